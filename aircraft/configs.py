@@ -1,0 +1,290 @@
+"""Rotorcraft configurations: the coaxial compound and the UH-60-like single rotor.
+
+Every number the reference dissertation gives (Appendix B, Table B.1) is used as
+given; every number it does not give is an *assumption*, collected in
+:data:`ASSUMPTIONS` with its reason, so a user can see and change them in one place.
+
+Units are SI (m, kg, s, rad) throughout. Non-dimensional rotor coefficients follow
+the dissertation's nomenclature (C_T = T / (rho A (Omega R)^2), etc.).
+
+Axes
+----
+Body axes: x forward, y starboard, z down, origin at the centre of gravity.
+Rotor ``direction`` is +1 for a rotor turning counter-clockwise seen from above
+(the usual US single rotor) and -1 for clockwise.  In a coaxial the upper rotor
+is counter-clockwise, the lower clockwise.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+import math
+
+__all__ = [
+    "FT", "LB", "RHO_SEA_LEVEL", "GRAVITY",
+    "RotorConfig", "PropellerConfig", "AircraftConfig",
+    "coaxial_compound", "uh60_single_rotor", "ASSUMPTIONS",
+]
+
+FT = 0.3048            #: metres per foot
+LB = 0.45359237        #: kilograms per pound (mass)
+RHO_SEA_LEVEL = 1.225  #: ISA sea-level density, kg/m^3
+GRAVITY = 9.80665      #: m/s^2
+
+
+@dataclass(frozen=True)
+class RotorConfig:
+    """Geometry, blade and aerodynamic properties of one rotor.
+
+    Parameters
+    ----------
+    name : str
+        Label used as the signal suffix (``"U"``, ``"L"``, or ``""`` for a
+        single rotor).
+    radius : float
+        Rotor radius R [m].
+    omega : float
+        Nominal rotor speed Omega [rad/s].
+    n_blades : int
+        Number of blades.
+    chord : float
+        Constant blade chord c [m].
+    twist : float
+        Total linear twist from rotation axis to tip [rad] (negative: washout).
+    root_cutout : float
+        Non-dimensional radius r/R where the lifting blade starts.
+    lift_slope : float
+        Section lift-curve slope a [1/rad].
+    cd0 : float
+        Section profile drag coefficient (constant).
+    stall_angle : float
+        Angle of attack [rad] above which the section lift is held constant.
+    flap_frequency : float
+        Non-dimensional rotating first flap frequency nu_beta [per rev].
+    lag_frequency : float
+        Non-dimensional first lag frequency [per rev] (documentation only).
+    hinge_offset : float
+        Flap hinge offset e/R (hingeless blades: equivalent hinge).
+    blade_mass : float
+        Mass of one blade [kg] (uniform distribution assumed).
+    direction : int
+        +1 counter-clockwise seen from above, -1 clockwise.
+    hub_position : tuple of float
+        Hub centre in body axes relative to the c.g. [m] (x fwd, y stbd, z down).
+    shaft_tilt : float
+        Forward shaft tilt [rad] (positive tilts the thrust forward).
+    """
+
+    name: str
+    radius: float
+    omega: float
+    n_blades: int
+    chord: float
+    twist: float
+    root_cutout: float
+    lift_slope: float = 5.73
+    cd0: float = 0.010
+    stall_angle: float = math.radians(12.0)
+    flap_frequency: float = 1.5
+    lag_frequency: float = 1.3
+    hinge_offset: float = 0.05
+    blade_mass: float = 100.0
+    direction: int = 1
+    hub_position: tuple = (0.0, 0.0, -2.0)
+    shaft_tilt: float = 0.0
+
+    def __post_init__(self):
+        for attr in ("radius", "omega", "chord", "lift_slope", "blade_mass"):
+            if not getattr(self, attr) > 0:
+                raise ValueError(f"RotorConfig.{attr} must be positive, got {getattr(self, attr)!r}")
+        if not (isinstance(self.n_blades, int) and self.n_blades >= 2):
+            raise ValueError(f"RotorConfig.n_blades must be an integer >= 2, got {self.n_blades!r}")
+        if not 0.0 <= self.root_cutout < 1.0:
+            raise ValueError(f"RotorConfig.root_cutout must be in [0, 1), got {self.root_cutout!r}")
+        if not 0.0 <= self.hinge_offset < self.root_cutout + 1e-12 or self.hinge_offset >= 1.0:
+            raise ValueError("RotorConfig.hinge_offset must lie in [0, root_cutout]")
+        if self.direction not in (1, -1):
+            raise ValueError(f"RotorConfig.direction must be +1 or -1, got {self.direction!r}")
+        if not self.flap_frequency >= 1.0:
+            raise ValueError("RotorConfig.flap_frequency must be >= 1 per rev")
+
+    # --- derived quantities -------------------------------------------------
+    @property
+    def solidity(self) -> float:
+        """Thrust-weighted solidity sigma = N_b c / (pi R)."""
+        return self.n_blades * self.chord / (math.pi * self.radius)
+
+    @property
+    def disk_area(self) -> float:
+        """Disk area pi R^2 [m^2]."""
+        return math.pi * self.radius ** 2
+
+    @property
+    def tip_speed(self) -> float:
+        """Omega R [m/s]."""
+        return self.omega * self.radius
+
+    @property
+    def blade_flap_inertia(self) -> float:
+        """Flap inertia of one uniform blade about the (equivalent) hinge [kg m^2]."""
+        length = self.radius * (1.0 - self.hinge_offset)
+        return self.blade_mass * length ** 2 / 3.0
+
+    def lock_number(self, rho: float = RHO_SEA_LEVEL) -> float:
+        """Lock number gamma = rho a c R^4 / I_b [-]."""
+        return rho * self.lift_slope * self.chord * self.radius ** 4 / self.blade_flap_inertia
+
+    def thrust_scale(self, rho: float = RHO_SEA_LEVEL) -> float:
+        """rho A (Omega R)^2 [N]: divides a thrust to give C_T."""
+        return rho * self.disk_area * self.tip_speed ** 2
+
+    def with_omega(self, omega: float) -> "RotorConfig":
+        """Copy with another rotor speed (e.g. the cruise Omega)."""
+        return replace(self, omega=omega)
+
+
+@dataclass(frozen=True)
+class PropellerConfig:
+    """Pusher propeller modelled by momentum theory (Bailey-type rotor).
+
+    radius [m], omega [rad/s], position [m] in body axes, solidity, lift_slope
+    [1/rad], cd0, twist [rad].  Thrust acts along body +x only (Appendix B.2).
+    """
+
+    radius: float = 6.6 * FT
+    omega: float = 136.0
+    position: tuple = (-9.0, 0.0, 0.0)
+    solidity: float = 0.12
+    lift_slope: float = 5.73
+    cd0: float = 0.010
+    twist: float = math.radians(-30.0)
+
+
+@dataclass(frozen=True)
+class AircraftConfig:
+    """A whole aircraft: rotors, mass properties, fuselage/empennage, propeller.
+
+    mass [kg]; inertias Ixx, Iyy, Izz, Ixz [kg m^2]; fuselage equivalent flat-plate
+    drag areas f_x (forward), f_z (vertical) [m^2]; horizontal tail area [m^2],
+    position [m] and lift slope [1/rad]; vertical tail likewise; ``rho`` [kg/m^3];
+    ``trim_ct``: per-rotor thrust coefficients the wind-tunnel trims aim for in
+    hover (from the dissertation where it gives them).
+    """
+
+    name: str
+    rotors: tuple
+    mass: float
+    Ixx: float
+    Iyy: float
+    Izz: float
+    Ixz: float = 0.0
+    rho: float = RHO_SEA_LEVEL
+    fuselage_fx: float = 2.0
+    fuselage_fz: float = 15.0
+    htail_area: float = 3.0
+    htail_position: tuple = (-8.0, 0.0, 0.0)
+    htail_lift_slope: float = 3.5
+    vtail_area: float = 2.5
+    vtail_position: tuple = (-8.5, 0.0, -1.0)
+    vtail_lift_slope: float = 3.0
+    propeller: PropellerConfig | None = None
+    trim_ct: tuple = ()
+    omega_cruise: float | None = None
+
+    def __post_init__(self):
+        if not self.rotors:
+            raise ValueError("AircraftConfig needs at least one rotor")
+        if not self.mass > 0:
+            raise ValueError("AircraftConfig.mass must be positive")
+        names = [r.name for r in self.rotors]
+        if len(set(names)) != len(names):
+            raise ValueError(f"rotor names must be unique, got {names}")
+
+    @property
+    def weight(self) -> float:
+        """Weight m g [N]."""
+        return self.mass * GRAVITY
+
+    @property
+    def is_coaxial(self) -> bool:
+        return len(self.rotors) == 2
+
+    def rotor(self, name: str) -> RotorConfig:
+        """The rotor called ``name`` (``"U"``, ``"L"`` or ``""``)."""
+        for r in self.rotors:
+            if r.name == name:
+                return r
+        raise KeyError(f"no rotor named {name!r}; have {[r.name for r in self.rotors]}")
+
+
+#: Every value not printed in the dissertation, with the reason it was chosen.
+ASSUMPTIONS = {
+    "coaxial.chord": "0.475 m: per-rotor solidity 0.065 so that C_T/sigma ~ 0.08/0.066 "
+                     "at the hover trim C_T (0.0053 upper, 0.0043 lower); XH-59A-like.",
+    "coaxial.twist": "-10 deg linear: typical of ABC/X2 hingeless rotors (not printed).",
+    "coaxial.root_cutout": "0.15 R.",
+    "coaxial.hinge_offset": "0.10 R equivalent hinge for a stiff hingeless blade; the "
+                            "flap frequency 1.5/rev of Table B.1 is set by an equivalent spring.",
+    "coaxial.hub_height": "upper hub 2.4 m above the c.g., lower 0.14 R below it (Table B.1 spacing).",
+    "coaxial.inertias": "Ixx 12,000, Iyy 60,000, Izz 55,000 kg m^2: UH-60 values "
+                        "(6,300 / 52,200 / 49,900) scaled for a mass ~1.9x larger and a shorter fuselage.",
+    "coaxial.fuselage": "f_x 2.5 m^2, f_z 20 m^2 flat-plate areas (regression-model class).",
+    "coaxial.tails": "horizontal tail 4.0 m^2 at 7.5 m aft; vertical tail 3.0 m^2 at 8.0 m aft.",
+    "coaxial.propeller": "solidity 0.12, twist -30 deg, 9.5 m aft of the c.g.",
+    "all.lift_slope": "5.73 /rad (2 pi corrected for thickness); stall at 12 deg.",
+    "all.cd0": "0.010 constant profile drag.",
+    "uh60.hinge_offset": "1.25 ft / 26.83 ft = 0.0466 (Appendix B.1 hinge).",
+    "uh60.root_cutout": "(1.25 + 3.83) ft / 26.83 ft = 0.189 (Appendix B.1 spar).",
+    "uh60.blade_mass": "116 kg (UH-60A blade ~256 lb).",
+    "uh60.flap_frequency": "1.035/rev: articulated rotor with 4.66 % hinge offset.",
+    "uh60.inertias": "UH-60A: Ixx 6,317, Iyy 52,216, Izz 49,889, Ixz 2,551 kg m^2 (GenHel values).",
+}
+
+
+def coaxial_compound(cruise: bool = False) -> AircraftConfig:
+    """The coaxial compound aircraft of Appendix B.2 / Table B.1.
+
+    Parameters
+    ----------
+    cruise : bool
+        If True use the forward-flight rotor speed (20.3 rad/s) instead of the
+        hover rotor speed (23.7 rad/s).
+    """
+    radius = 30.55 * FT
+    omega = 20.3 if cruise else 23.7
+    spacing = 0.14 * radius
+    blade_mass = 1133.0 * LB
+    common = dict(radius=radius, omega=omega, n_blades=4, chord=0.475,
+                  twist=math.radians(-10.0), root_cutout=0.15, hinge_offset=0.10,
+                  flap_frequency=1.5, lag_frequency=1.3, blade_mass=blade_mass)
+    upper = RotorConfig(name="U", direction=1, hub_position=(0.0, 0.0, -2.4), **common)
+    lower = RotorConfig(name="L", direction=-1, hub_position=(0.0, 0.0, -2.4 + spacing), **common)
+    return AircraftConfig(
+        name="coaxial compound (Table B.1)",
+        rotors=(upper, lower),
+        mass=35185.0 * LB,
+        Ixx=12000.0, Iyy=60000.0, Izz=55000.0, Ixz=0.0,
+        fuselage_fx=2.5, fuselage_fz=20.0,
+        htail_area=4.0, htail_position=(-7.5, 0.0, 0.0),
+        vtail_area=3.0, vtail_position=(-8.0, 0.0, -1.0),
+        propeller=PropellerConfig(position=(-9.5, 0.0, 0.0)),
+        trim_ct=(0.0053, 0.0043),
+        omega_cruise=20.3,
+    )
+
+
+def uh60_single_rotor() -> AircraftConfig:
+    """The UH-60-like single main rotor helicopter of Appendix B.1 (C_T = 0.0061)."""
+    radius = 26.83 * FT
+    rotor = RotorConfig(
+        name="", radius=radius, omega=27.0, n_blades=4, chord=1.73 * FT,
+        twist=math.radians(-17.0), root_cutout=(1.25 + 3.83) / 26.83,
+        hinge_offset=1.25 / 26.83, flap_frequency=1.035, lag_frequency=0.27,
+        blade_mass=116.0, direction=1, hub_position=(0.0, 0.0, -1.9),
+    )
+    return AircraftConfig(
+        name="UH-60-like single rotor (Appendix B.1)",
+        rotors=(rotor,),
+        mass=17150.0 * LB,
+        Ixx=6317.0, Iyy=52216.0, Izz=49889.0, Ixz=2551.0,
+        trim_ct=(0.0061,),
+    )
