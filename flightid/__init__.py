@@ -2,5 +2,37 @@
 
 Nothing here knows about rotors: the same code identifies a free-vortex wake,
 a flight-test record or a wind-tunnel record.
+
+::
+
+    frequency_sweep / doublet / multistep_3211          (test inputs)
+              │ time histories t, u, y
+              ▼
+    frequency_response ─► MeasuredResponse (FRD + coherence)   chirp-z, composite windows
+              │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
+              ▼
+    MLTauStructure / FGCStructure / GainDelayStructure  (free / fixed / tied parameters)
+              │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability)
+              │ reduce (automatic Fig. 6.1 loop)
+              ▼
+    FitResult.model  ─►  control.StateSpace (Padé delays)  ─►  verify (TIC, RMS)
 """
-__all__: list = []
+from .errors import DataError, IdentificationError, SingularInputError, UnstableModelError
+from .sweeps import doublet, frequency_sweep, multistep_3211, shaped_noise
+from .response import MeasuredResponse, combine_responses, frequency_response
+from .joint import joint_input_output
+from .structures import FGCStructure, GainDelayStructure, MLTauStructure, ModelStructure
+from .fitting import FitResult, cifer_cost, coherence_weight, fit
+from .reduction import ReductionResult, reduce
+from .verification import VerificationResult, theil_inequality, verify
+
+__all__ = [
+    "DataError", "IdentificationError", "SingularInputError", "UnstableModelError",
+    "doublet", "frequency_sweep", "multistep_3211", "shaped_noise",
+    "MeasuredResponse", "combine_responses", "frequency_response",
+    "joint_input_output",
+    "FGCStructure", "GainDelayStructure", "MLTauStructure", "ModelStructure",
+    "FitResult", "cifer_cost", "coherence_weight", "fit",
+    "ReductionResult", "reduce",
+    "VerificationResult", "theil_inequality", "verify",
+]

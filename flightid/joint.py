@@ -1,0 +1,97 @@
+"""The joint input-output method (§3.3.5, Eqs. 3.22-3.25, block form Eq. 4.11).
+
+When the wanted model inputs ("input-outputs", e.g. rotor loads) are outputs of
+the system and cannot be swept independently, sweep the true controls theta one
+at a time, measure ``y/theta`` and ``u/theta``, and form
+``y/u = (y/theta) (u/theta)^-1`` frequency by frequency.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import IdentificationError, SingularInputError
+from .response import MeasuredResponse
+
+__all__ = ["joint_input_output"]
+
+
+def joint_input_output(y_over_theta: MeasuredResponse, u_over_theta: MeasuredResponse, *,
+                       structural_zeros=None, max_condition=1e6, name=None) -> MeasuredResponse:
+    """Outputs over input-outputs, ``y/u = (y/theta) (u/theta)^+`` (Eq. 3.22).
+
+    Parameters
+    ----------
+    y_over_theta : MeasuredResponse
+        Outputs to controls, shape (n_y, n_theta).
+    u_over_theta : MeasuredResponse
+        Input-outputs to controls, shape (n_u, n_theta), same controls (same
+        names, same order) and frequency grid.  ``n_theta >= n_u``: square
+        matrices are inverted, over-determined ones use the pseudo-inverse.
+    structural_zeros : array_like of bool (n_u, n_theta), optional
+        Elements of u/theta known to be zero (e.g. the lower-left block of
+        Eq. 4.11: loads do not drive prescribed flap-rate inputs); they are set
+        to exactly zero before inversion.
+    max_condition : float
+        Largest acceptable condition number of u/theta; above it the matrix is
+        treated as singular.
+
+    Returns
+    -------
+    MeasuredResponse
+        Shape (n_y, n_u), with the magnitude-weighted coherence of Eqs. 3.23-3.25.
+
+    Raises
+    ------
+    SingularInputError
+        Naming the frequencies [rad/s] where u/theta is singular.
+
+    Notes
+    -----
+    Coherence (Eqs. 3.23-3.25): ``y/u_ij = sum_n Y_in Ui_nj`` with
+    ``Ui = (u/theta)^+``; each term's coherence is taken as
+    ``min(coh(Y_in), coh(U_jn))`` (the inverse element Ui_nj relates theta_n
+    and u_j, whose measured coherence is that of U_jn), weighted by
+    ``|Y_in Ui_nj| / sum_n |Y_in Ui_nj|``.  The dissertation divides by
+    ``|y/u_ij|`` instead of the sum of magnitudes; that can exceed one when the
+    terms cancel, so we normalise by the sum, which keeps the result in [0, 1].
+    """
+    if list(y_over_theta.input_labels) != list(u_over_theta.input_labels):
+        raise IdentificationError(
+            f"y/theta and u/theta must have the same controls in the same order: "
+            f"{y_over_theta.input_labels} vs {u_over_theta.input_labels}")
+    w = y_over_theta.omega
+    if w.shape != u_over_theta.omega.shape or not np.allclose(w, u_over_theta.omega):
+        raise IdentificationError("y/theta and u/theta must share one frequency grid")
+    Y = np.moveaxis(y_over_theta.frdata, -1, 0)          # (n_w, n_y, n_theta)
+    U = np.moveaxis(u_over_theta.frdata, -1, 0).copy()   # (n_w, n_u, n_theta)
+    cy = np.moveaxis(y_over_theta.coherence, -1, 0)
+    cu = np.moveaxis(u_over_theta.coherence, -1, 0)
+    n_u, n_theta = U.shape[1:]
+    if n_theta < n_u:
+        raise IdentificationError(
+            f"{n_u} input-outputs but only {n_theta} controls: the joint input-output "
+            "method needs one independent sweep per input-output")
+    if structural_zeros is not None:
+        mask = np.asarray(structural_zeros, dtype=bool)
+        if mask.shape != (n_u, n_theta):
+            raise IdentificationError(f"structural_zeros must be {n_u} x {n_theta}")
+        U[:, mask] = 0.0
+    sv = np.linalg.svd(U, compute_uv=False)
+    cond = sv[:, 0] / np.maximum(sv[:, -1], 1e-300)
+    bad = cond > max_condition
+    if np.any(bad):
+        freqs = w[bad]
+        raise SingularInputError(
+            f"u/theta is singular (condition > {max_condition:.0e}) at {bad.sum()} of {w.size} "
+            f"frequencies: {np.array2string(freqs, precision=3, max_line_width=200)} rad/s; "
+            "a control sweep does not excite the input-outputs independently", freqs)
+    Ui = np.linalg.pinv(U)                                # (n_w, n_theta, n_u)
+    H = Y @ Ui                                             # (n_w, n_y, n_u)
+    terms = np.abs(Y[:, :, :, None] * Ui[:, None, :, :])  # (n_w, n_y, n_theta, n_u)
+    # coherence of term (i, n, j): min(coh Y_in, coh U_jn)
+    cmin = np.minimum(cy[:, :, :, None], np.swapaxes(cu, 1, 2)[:, None, :, :])
+    weights = terms / np.maximum(terms.sum(axis=2, keepdims=True), 1e-300)
+    coh = np.sum(weights * cmin, axis=2)
+    return MeasuredResponse(np.moveaxis(H, 0, -1), w, np.moveaxis(coh, 0, -1),
+                            list(u_over_theta.output_labels), list(y_over_theta.output_labels),
+                            name=name)

@@ -1,0 +1,156 @@
+"""Test inputs: CIFER-style frequency sweeps, shaped noise, doublets and 3-2-1-1s.
+
+All functions return ``(t, u)``: time [s] starting at 0 and the input signal,
+sampled every ``dt`` seconds, starting and ending at trim (zero perturbation).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import DataError
+
+__all__ = ["frequency_sweep", "shaped_noise", "doublet", "multistep_3211"]
+
+# CIFER / Tischler & Remple recommended exponential growth constants: with these
+# the instantaneous frequency reaches w_max exactly at the end of the sweep
+# (C2 (e^C1 - 1) = 1.0005) while spending most of the record at low frequency,
+# where longer periods need more time to be identified.
+_C1 = 4.0
+_C2 = 0.0187
+
+
+def _check_positive(**values):
+    for name, value in values.items():
+        if not np.isfinite(value) or value <= 0:
+            raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+
+
+def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0,
+                    trim_end=3.0, noise_fraction=0.0, seed=None, fade_cycles=0.5):
+    """CIFER-style swept sine with trim lead-in and lead-out.
+
+    The instantaneous frequency grows log-linearly (exponentially in time) from
+    ``w_min`` to ``w_max``: ``w(t) = w_min + C2 (exp(C1 t / T) - 1) (w_max - w_min)``
+    with C1 = 4, C2 = 0.0187 (Tischler & Remple, *Aircraft and Rotorcraft System
+    Identification*, Ch. 6), and the signal is ``amplitude * sin(int w dt)``.
+
+    Parameters
+    ----------
+    w_min, w_max : float
+        Start and end frequency [rad/s], ``0 < w_min < w_max``.
+    duration : float
+        Length of the swept part [s]; it should hold at least two periods of
+        ``w_min`` (``4 pi / w_min``).
+    dt : float
+        Sample time [s]; must resolve ``w_max`` with >= 8 samples per period.
+    amplitude : float
+        Sweep amplitude (units of the input).
+    trim_start, trim_end : float
+        Seconds at trim (zero) before and after the sweep.
+    noise_fraction : float
+        RMS of an added shaped-noise companion (band-limited to [w_min, w_max],
+        §3.3.4) as a fraction of ``amplitude``; 0 disables it.
+    seed : int or None
+        Seed of the noise generator (explicit for reproducibility).
+    fade_cycles : float
+        The first and last ``fade_cycles`` periods are faded in/out with a
+        half-cosine so the input starts and ends at trim without a step.
+
+    Returns
+    -------
+    t : ndarray
+        Time [s], ``trim_start + duration + trim_end`` long.
+    u : ndarray
+        The input.
+    """
+    _check_positive(w_min=w_min, w_max=w_max, duration=duration, dt=dt)
+    if not w_max > w_min:
+        raise ValueError(f"w_max ({w_max}) must exceed w_min ({w_min})")
+    if trim_start < 0 or trim_end < 0:
+        raise ValueError("trim_start and trim_end must be >= 0")
+    if duration < 4 * np.pi / w_min:
+        raise ValueError(f"duration {duration:.3g} s holds fewer than two periods of "
+                         f"w_min = {w_min:.3g} rad/s (needs >= {4 * np.pi / w_min:.3g} s)")
+    if dt > 2 * np.pi / w_max / 8:
+        raise ValueError(f"dt = {dt:.3g} s gives fewer than 8 samples per period at w_max = "
+                         f"{w_max:.3g} rad/s (needs dt <= {2 * np.pi / w_max / 8:.3g} s)")
+    n_total = int(round((trim_start + duration + trim_end) / dt)) + 1
+    t = np.arange(n_total) * dt
+    tau = t - trim_start
+    inside = (tau >= 0) & (tau <= duration)
+    k = _C2 * (np.exp(_C1 * np.clip(tau, 0, duration) / duration) - 1.0)
+    # phase = integral of w(t): closed form of the exponential growth law
+    ts = np.clip(tau, 0, duration)
+    phase = w_min * ts + (w_max - w_min) * _C2 * (
+        duration / _C1 * (np.exp(_C1 * ts / duration) - 1.0) - ts)
+    u = np.where(inside, amplitude * np.sin(phase), 0.0)
+    w_inst = w_min + k * (w_max - w_min)
+    # half-cosine fades so the sweep leaves and returns to trim smoothly
+    fade_in = fade_cycles * 2 * np.pi / w_min
+    fade_out = fade_cycles * 2 * np.pi / w_max
+    env = np.ones_like(t)
+    m = inside & (tau < fade_in)
+    env[m] = 0.5 * (1 - np.cos(np.pi * tau[m] / fade_in))
+    m = inside & (tau > duration - fade_out)
+    env[m] = 0.5 * (1 - np.cos(np.pi * (duration - tau[m]) / fade_out))
+    u = u * env
+    if noise_fraction:
+        if noise_fraction < 0:
+            raise ValueError("noise_fraction must be >= 0")
+        noise = shaped_noise(n_total, dt, w_min, w_max, rms=noise_fraction * amplitude, seed=seed)
+        u = u + np.where(inside, noise * env, 0.0)
+    del w_inst
+    return t, u
+
+
+def shaped_noise(n, dt, w_min, w_max, rms=1.0, seed=None):
+    """Gaussian noise band-limited to [w_min, w_max] rad/s, scaled to ``rms``.
+
+    Used as a decorrelating companion input (§3.3.4). Shaping is done in the
+    frequency domain (zeroing FFT bins outside the band), so the band edges are
+    exact. ``seed`` makes it reproducible.
+    """
+    if n < 2:
+        raise ValueError("shaped_noise needs n >= 2 samples")
+    _check_positive(dt=dt, w_min=w_min, w_max=w_max)
+    rng = np.random.default_rng(seed)
+    white = rng.standard_normal(n)
+    spec = np.fft.rfft(white)
+    w = 2 * np.pi * np.fft.rfftfreq(n, dt)
+    spec[(w < w_min) | (w > w_max)] = 0.0
+    shaped = np.fft.irfft(spec, n)
+    std = shaped.std()
+    if std == 0:
+        raise ValueError("the band [w_min, w_max] holds no frequency bin of this record")
+    return shaped * (rms / std)
+
+
+def _pulses(levels, amplitude, pulse_width, dt, duration, start):
+    _check_positive(pulse_width=pulse_width, dt=dt, duration=duration)
+    if start < 0:
+        raise ValueError("start must be >= 0")
+    end = start + pulse_width * sum(abs(n) for n, _ in levels)
+    if end > duration:
+        raise DataError(f"the input ends at {end:.3g} s, after the record ({duration:.3g} s)")
+    t = np.arange(int(round(duration / dt)) + 1) * dt
+    u = np.zeros_like(t)
+    t0 = start
+    for n_widths, sign in levels:
+        t1 = t0 + n_widths * pulse_width
+        u[(t >= t0 - 1e-12) & (t < t1 - 1e-12)] = sign * amplitude
+        t0 = t1
+    return t, u
+
+
+def doublet(amplitude, pulse_width, dt, duration, start=1.0):
+    """Doublet: +amplitude for ``pulse_width`` s, then -amplitude as long, then trim.
+
+    Returns ``(t, u)`` with t in [0, duration] s.
+    """
+    return _pulses([(1, 1.0), (1, -1.0)], amplitude, pulse_width, dt, duration, start)
+
+
+def multistep_3211(amplitude, pulse_width, dt, duration, start=1.0):
+    """3-2-1-1 multistep: +3, -2, +1, -1 pulse widths of ``pulse_width`` s."""
+    return _pulses([(3, 1.0), (2, -1.0), (1, 1.0), (1, -1.0)],
+                   amplitude, pulse_width, dt, duration, start)
