@@ -214,7 +214,7 @@ class ModelStructure:
         tau = self._delays(mats)
         base = control.ss(a, b, c, d) if a.size else control.ss([], [], [], d)
         n_out, n_in = tau.shape
-        if not np.any(tau > 0):
+        if not np.any(tau >= 1e-6):
             sys = base
         else:
             rows = []
@@ -242,7 +242,9 @@ class ModelStructure:
 
     @staticmethod
     def _pade(tau, order):
-        if tau <= 0:
+        # below a microsecond a delay is numerically zero: its Padé pole (2/tau)
+        # would be ~1e6 rad/s or more and only make the realisation stiff
+        if tau < 1e-6:
             return control.ss([], [], [], [[1.0]])
         n = order if order is not None else (1 if tau < 0.05 else 2)
         num, den = control.pade(tau, n)

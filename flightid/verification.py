@@ -105,6 +105,9 @@ def verify(model, t, inputs, outputs, *, input_names=None, output_names=None,
         z = z - z[:, :1]
     sim = control.forced_response(model, t, u)
     y = np.atleast_2d(sim.outputs)
+    if not np.all(np.isfinite(y)):
+        raise DataError("the model's simulated outputs are not finite: the model is unstable "
+                        "or numerically ill-conditioned (check its poles)")
     rows = []
     for k, name in enumerate(output_names):
         err = y[k] - z[k]

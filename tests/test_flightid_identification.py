@@ -6,7 +6,7 @@ from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 from flightid import (IdentificationError, MLTauStructure, FGCStructure, GainDelayStructure,
                       SingularInputError, combine_responses, doublet, fit, frequency_response,
                       frequency_sweep, joint_input_output, reduce, verify)
-from synthetic_truth import coaxial_sweep_set, simulate_mltau
+from studies.synthetic_coaxial import coaxial_sweep_set, simulate_mltau
 
 OMEGA = 27.0
 

@@ -1,4 +1,4 @@
-"""Synthetic truth data for flightid tests, generated WITHOUT flightid's model code.
+"""Synthetic truth experiments for flightid, generated WITHOUT flightid's model code.
 
 The truth M/Lbar/tau model (azimuth time, row-wise delays of Eq. 2.16) is
 simulated with scipy.signal.lsim: for each state i the full system is driven by
