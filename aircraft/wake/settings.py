@@ -1,0 +1,122 @@
+"""Settings of the free-vortex wake (a dataclass, SI units and radians)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, asdict
+import math
+
+__all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError"]
+
+
+class WakeSettingsError(ValueError):
+    """Raised for inconsistent wake settings or flight conditions."""
+
+
+@dataclass(frozen=True)
+class WakeSettings:
+    """Resolution and physical parameters of :class:`~aircraft.wake.FreeVortexWake`.
+
+    Parameters
+    ----------
+    azimuth_step : float
+        Time step as a rotor azimuth increment d psi = d zeta [rad] (default 10 deg).
+    wake_revolutions : float
+        Length of the free tip vortex, in rotor revolutions of wake age [-].
+    buffer_revolutions : float
+        Length of the frozen far-wake buffer behind the free wake [rev].  Its markers
+        keep the convection velocity they had when they left the free wake (as
+        OpenFAST/OLAF does), so the wake end neither rolls up nor is cut abruptly.
+    near_wake_extent : float
+        Azimuthal extent of the rigid trailed near wake [rad] (default 30 deg).
+    n_elements : int
+        Blade elements (lifting-line panels) per blade.
+    core_radius : float
+        Initial tip-vortex core radius as a fraction of the blade chord [-].
+    near_wake_core : float
+        Core radius of bound and near-wake trailed filaments, fraction of chord [-].
+    core_delta : float
+        Squire's eddy-viscosity coefficient delta [-] in the core growth law.
+    kinematic_viscosity : float
+        nu [m^2/s].
+    free_flapping : bool
+        If True integrate each blade's flap equation with the wake; if False hold
+        the flapping at the prescribed (trim) harmonics.
+    initial_wake_kappa : float
+        Induced-power factor used for the prescribed (Landgrebe) initial wake.
+    """
+
+    azimuth_step: float = math.radians(10.0)
+    wake_revolutions: float = 4.0
+    buffer_revolutions: float = 1.0
+    near_wake_extent: float = math.radians(30.0)
+    n_elements: int = 10
+    core_radius: float = 0.10
+    near_wake_core: float = 0.25
+    core_delta: float = 1000.0
+    kinematic_viscosity: float = 1.5e-5
+    free_flapping: bool = False
+    initial_wake_kappa: float = 1.15
+
+    def __post_init__(self):
+        if not 0.0 < self.azimuth_step <= math.radians(30.0):
+            raise WakeSettingsError(
+                f"azimuth_step must be in (0, 30 deg] [rad], got {self.azimuth_step!r}")
+        if abs(round(2 * math.pi / self.azimuth_step) * self.azimuth_step - 2 * math.pi) > 1e-9:
+            raise WakeSettingsError("azimuth_step must divide 360 deg exactly")
+        if self.near_wake_extent < self.azimuth_step - 1e-12:
+            raise WakeSettingsError("near_wake_extent must be at least one azimuth_step [rad]")
+        if not self.wake_revolutions > 0 or self.buffer_revolutions < 0:
+            raise WakeSettingsError("wake_revolutions must be > 0 and buffer_revolutions >= 0")
+        if not (isinstance(self.n_elements, int) and self.n_elements >= 2):
+            raise WakeSettingsError(f"n_elements must be an integer >= 2, got {self.n_elements!r}")
+        for name in ("core_radius", "near_wake_core", "kinematic_viscosity"):
+            if not getattr(self, name) > 0:
+                raise WakeSettingsError(f"{name} must be positive, got {getattr(self, name)!r}")
+        if self.core_delta < 0:
+            raise WakeSettingsError("core_delta must be >= 0")
+
+    @property
+    def steps_per_rev(self) -> int:
+        return int(round(2 * math.pi / self.azimuth_step))
+
+    @property
+    def n_near(self) -> int:
+        """Near-wake segments per trailer."""
+        return max(1, int(round(self.near_wake_extent / self.azimuth_step)))
+
+    @property
+    def n_free(self) -> int:
+        """Free tip-vortex markers per blade (after the first, attached one)."""
+        return max(2, int(round(self.wake_revolutions * self.steps_per_rev)))
+
+    @property
+    def n_buffer(self) -> int:
+        return int(round(self.buffer_revolutions * self.steps_per_rev))
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class FlightCondition:
+    """Wind-tunnel flight condition (shaft fixed).
+
+    Parameters
+    ----------
+    speed : float
+        Free-stream speed [m/s] (0 for hover).
+    alpha : float
+        Rotor (shaft) angle of attack [rad]; positive tilts the disk back, so that
+        the free stream has a component *up* through the disk (mu_z > 0).
+    """
+
+    speed: float = 0.0
+    alpha: float = 0.0
+
+    def __post_init__(self):
+        if self.speed < 0 or not math.isfinite(self.speed):
+            raise WakeSettingsError(f"speed must be a finite value >= 0 [m/s], got {self.speed!r}")
+        if abs(self.alpha) > math.radians(30.0):
+            raise WakeSettingsError(f"alpha must be within +-30 deg [rad], got {self.alpha!r}")
+
+    def to_dict(self) -> dict:
+        return asdict(self)

@@ -1,0 +1,551 @@
+"""Time-marching free-vortex wake of one rotor or a coaxial pair (wind-tunnel mode).
+
+Computational frame: origin at the first (upper/main) hub, X forward, Y to port,
+Z up along the shaft (the shaft is fixed; the free stream carries the rotor angle
+of attack).  Rotor quantities are reported in each rotor's own frame
+(:mod:`aircraft.inflow.base`); off-rotor velocities in body axes.
+
+Per step (d t = d psi / Omega, equal to the wake-age step d zeta):
+
+1. velocities V^n at the free tip-vortex markers (Biot-Savart of every tip-vortex,
+   near-wake and bound segment of every rotor, plus the free stream);
+2. predictor (explicit, second-order Adams-Bashforth along the marker path);
+3. blades advance (azimuth, controls, flapping); new rigid near wake;
+4. corrector: second-order backward difference (BDF2) with the velocity at the
+   predicted geometry -- the PC2B idea of Bhagwat & Leishman (2001);
+5. bound circulation: lifting-line panels, linear lift with a stall limit,
+   Kutta-Joukowski; the near-wake/bound influence is solved as a small linear
+   system, the tip vortices' influence is explicit;
+6. the newest tip-vortex marker takes the blade's peak bound circulation
+   (roll-up); the oldest free marker enters the frozen far-wake buffer.
+"""
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from ..configs import AircraftConfig
+from ..inflow.base import rotor_suffix
+from .biot_savart import segment_velocity, segment_influence, core_radius
+from .outputs import blade_sum_loads, blade_sum_inflow, flap_rate_mbc
+from .settings import WakeSettings, FlightCondition, WakeSettingsError
+
+__all__ = ["FreeVortexWake", "WakeDivergedError"]
+
+_CONTROL_KEYS = ("theta0", "theta1s", "theta1c")
+
+
+class WakeDivergedError(RuntimeError):
+    """Raised when the wake geometry or the loads become non-finite."""
+
+
+@dataclass
+class _Rotor:
+    """Geometry constants of one rotor in the computational frame."""
+    name: str
+    R: float
+    omega: float
+    d: int
+    nb: int
+    chord: float
+    e: float
+    twist: float
+    a: float
+    cd0: float
+    stall: float
+    nu2: float
+    inertia: float
+    hub: np.ndarray
+    r_edge: np.ndarray
+    r: np.ndarray
+    dr: np.ndarray
+    scale: float
+
+
+class FreeVortexWake:
+    """Lightweight free-vortex wake of the rotor(s) of an aircraft configuration.
+
+    Parameters
+    ----------
+    config : AircraftConfig
+        One rotor or a coaxial pair (same rotor speed).
+    settings : WakeSettings
+        Resolution and wake parameters.
+    flight : FlightCondition
+        Free-stream speed [m/s] and rotor angle of attack [rad] (shaft fixed).
+
+    Notes
+    -----
+    The wake starts as a prescribed helix (Landgrebe's contraction and descent in
+    hover, a momentum-inflow skewed helix in forward flight) and is marched in time.
+    Use :meth:`trim` to reach a periodic, trimmed wake, then :meth:`run`.
+    """
+
+    def __init__(self, config: AircraftConfig, settings: WakeSettings | None = None,
+                 flight: FlightCondition | None = None):
+        if not isinstance(config, AircraftConfig):
+            raise TypeError("config must be an aircraft.configs.AircraftConfig")
+        self.config = config
+        self.settings = settings if settings is not None else WakeSettings()
+        self.flight = flight if flight is not None else FlightCondition()
+        omegas = {rc.omega for rc in config.rotors}
+        if len(omegas) != 1:
+            raise WakeSettingsError("all rotors must turn at the same speed (coaxial); got "
+                                    f"{sorted(omegas)} rad/s")
+        self.omega = omegas.pop()
+        s = self.settings
+        self.dt = s.azimuth_step / self.omega
+        hub0 = np.array(config.rotors[0].hub_position, dtype=float)
+        self._hub0_body = hub0
+        self.rotors = []
+        for rc in config.rotors:
+            # half-cosine spacing: panels cluster at the tip where the load drops
+            sgrid = np.linspace(0.0, 1.0, s.n_elements + 1)
+            r_edge = rc.root_cutout + (1.0 - rc.root_cutout) * np.sin(0.5 * np.pi * sgrid)
+            hub_body = np.array(rc.hub_position, dtype=float)
+            hub = self._body_to_comp(hub_body, absolute=True)
+            nu2 = rc.flap_frequency ** 2
+            self.rotors.append(_Rotor(
+                name=rc.name, R=rc.radius, omega=rc.omega, d=rc.direction, nb=rc.n_blades,
+                chord=rc.chord, e=rc.hinge_offset, twist=rc.twist, a=rc.lift_slope,
+                cd0=rc.cd0, stall=rc.stall_angle, nu2=nu2, inertia=rc.blade_flap_inertia,
+                hub=hub, r_edge=r_edge, r=0.5 * (r_edge[1:] + r_edge[:-1]),
+                dr=np.diff(r_edge), scale=rc.thrust_scale(config.rho)))
+        self.rho = config.rho
+        v = self.flight.speed
+        self.v_inf = np.array([-v * math.cos(self.flight.alpha), 0.0, v * math.sin(self.flight.alpha)])
+        self.controls = {self._cname(k, r.name): 0.0 for r in self.rotors for k in _CONTROL_KEYS}
+        self.beta_trim = {r.name: np.zeros(3) for r in self.rotors}  # beta0, beta1c, beta1s
+        self.points = {}
+        self._trim_state = None
+        self.trim_result = None
+        ct0 = config.trim_ct if len(config.trim_ct) == len(self.rotors) else (0.006,) * len(self.rotors)
+        self._initialise(ct0)
+
+    # ------------------------------------------------------------------ frames
+    def _body_to_comp(self, p, absolute=False):
+        p = np.asarray(p, dtype=float)
+        q = p - self._hub0_body if not absolute else p - self._hub0_body
+        return np.stack([q[..., 0], -q[..., 1], -q[..., 2]], axis=-1)
+
+    @staticmethod
+    def _cname(key, rotor):
+        return f"{key}{rotor_suffix(rotor)}"
+
+    @property
+    def control_names(self):
+        return [self._cname(k, r.name) for r in self.rotors for k in _CONTROL_KEYS]
+
+    # ------------------------------------------------------------- kinematics
+    def _blade_frames(self, rot, psi, beta):
+        """Unit vectors of each blade: radial e_r, tangential e_t (direction of
+        motion), flapped span direction s, normal n; shapes (Nb, 3)."""
+        z = np.array([0.0, 0.0, 1.0])
+        er = np.stack([-np.cos(psi), -rot.d * np.sin(psi), np.zeros_like(psi)], axis=1)
+        et = np.stack([np.sin(psi), -rot.d * np.cos(psi), np.zeros_like(psi)], axis=1)
+        cb, sb = np.cos(beta)[:, None], np.sin(beta)[:, None]
+        span = cb * er + sb * z
+        normal = cb * z - sb * er
+        return er, et, span, normal
+
+    def _blade_points(self, rot, psi, beta, rr):
+        """Points at radius ``rr`` (on R) of every blade, shape (Nb, len(rr), 3)."""
+        er, _, span, _ = self._blade_frames(rot, psi, beta)
+        return (rot.hub[None, None, :] + rot.R * rot.e * er[:, None, :]
+                + rot.R * (rr[None, :, None] - rot.e) * span[:, None, :])
+
+    def _psi_blades(self, rot, psi):
+        return psi + 2.0 * np.pi * np.arange(rot.nb) / rot.nb
+
+    def _near_wake_points(self, ir, psi, beta):
+        """Rigid near-wake trailer points, shape (Nb, Ne+1, n_near+1, 3), age 0 first."""
+        rot = self.rotors[ir]
+        s = self.settings
+        ages = np.arange(s.n_near + 1) * s.azimuth_step
+        pts = np.empty((rot.nb, rot.r_edge.size, ages.size, 3))
+        # the near wake drifts with the free stream and half the rotor's mean
+        # induced velocity (the tip vortex's initial descent is about that)
+        drift = self.v_inf - np.array([0.0, 0.0, 0.5 * self._lam0[ir] * self.omega * rot.R])
+        for m, age in enumerate(ages):
+            pts[:, :, m, :] = (self._blade_points(rot, self._psi_blades(rot, psi) - age, beta, rot.r_edge)
+                               + drift * age / self.omega)
+        return pts
+
+    # ---------------------------------------------------------- initial wake
+    def _initialise(self, cts):
+        s = self.settings
+        nk = 1 + s.n_free + s.n_buffer
+        self.t = 0.0
+        self.psi = 0.0
+        self.step_count = 0
+        self._lam0 = np.array([s.initial_wake_kappa * math.sqrt(ct / 2.0) for ct in cts])
+        self.X, self.Xold, self.Vold, self.Vbuf, self.G_tip = [], [], [], [], []
+        self.gamma, self.beta, self.beta_dot = [], [], []
+        ages = s.near_wake_extent + np.arange(nk) * s.azimuth_step
+        self._ages = ages
+        mu = np.hypot(self.v_inf[0], self.v_inf[1]) / (self.omega * self.rotors[0].R)
+        for ir, rot in enumerate(self.rotors):
+            ct = cts[ir]
+            sigma = rot.nb * rot.chord / (math.pi * rot.R)
+            psib = self._psi_blades(rot, self.psi)
+            X = np.empty((rot.nb, nk, 3))
+            if mu < 0.05:
+                # Landgrebe prescribed hover wake (Leishman, Principles, Sec. 10.7)
+                tw = math.degrees(rot.twist)
+                k1 = -0.25 * (ct / sigma + 0.001 * tw)
+                k2 = -(1.41 + 0.0141 * tw) * math.sqrt(ct / 2.0)
+                lam = 0.145 + 27.0 * ct
+                rad = 0.78 + 0.22 * np.exp(-lam * ages)
+                zb = 2 * np.pi / rot.nb
+                zz = np.where(ages <= zb, k1 * ages, k1 * zb + k2 * (ages - zb))
+                for b in range(rot.nb):
+                    ang = psib[b] - ages
+                    X[b, :, 0] = -rad * np.cos(ang)
+                    X[b, :, 1] = -rot.d * rad * np.sin(ang)
+                    X[b, :, 2] = zz
+                X = rot.hub + rot.R * X + self.v_inf * (ages / self.omega)[None, :, None]
+            else:
+                # skewed undistorted helix with the momentum (Glauert) inflow
+                vi = self._lam0[ir] * self.omega * rot.R
+                drift = self.v_inf - np.array([0.0, 0.0, vi])
+                for b in range(rot.nb):
+                    ang = psib[b] - ages
+                    X[b, :, 0] = -rot.R * np.cos(ang)
+                    X[b, :, 1] = -rot.d * rot.R * np.sin(ang)
+                    X[b, :, 2] = 0.0
+                X = rot.hub + X + drift * (ages / self.omega)[None, :, None]
+            self.X.append(X)
+            self.Xold.append(X.copy())
+            self.Vold.append(np.zeros((rot.nb, s.n_free + 1, 3)))
+            self.Vbuf.append(np.zeros((rot.nb, nk, 3)))
+            g0 = 2.0 * math.pi * ct * self.omega * rot.R ** 2 / rot.nb
+            self.G_tip.append(np.full((rot.nb, nk), 1.2 * g0))
+            self.gamma.append(np.full((rot.nb, s.n_elements), g0))
+            self.beta.append(np.zeros(rot.nb))
+            self.beta_dot.append(np.zeros(rot.nb))
+        self._first_step = True
+        self._last = None
+        self._solve_blades()
+
+    # --------------------------------------------------------------- sources
+    def _tip_sources(self, X=None):
+        """Tip-vortex segments of all rotors: (a, b, gamma, rc)."""
+        s = self.settings
+        X = self.X if X is None else X
+        A, B, G, RC = [], [], [], []
+        for ir, rot in enumerate(self.rotors):
+            A.append(X[ir][:, :-1, :].reshape(-1, 3))
+            B.append(X[ir][:, 1:, :].reshape(-1, 3))
+            G.append(rot.d * 0.5 * (self.G_tip[ir][:, :-1] + self.G_tip[ir][:, 1:]).ravel())
+            mid = 0.5 * (self._ages[:-1] + self._ages[1:])
+            rc = core_radius(mid, self.omega, s.core_radius * rot.chord, s.core_delta,
+                             s.kinematic_viscosity)
+            RC.append(np.tile(rc, rot.nb))
+        return np.concatenate(A), np.concatenate(B), np.concatenate(G), np.concatenate(RC)
+
+    def _attached_segments(self):
+        """Bound and near-wake segments of all blades with the map to panel circulation.
+
+        Returns (a, b, rc, gmap) with ``gmap`` (S, P): segment strength = gmap @ gamma,
+        gamma stacked over rotors, blades, panels (P = sum Nb Ne).
+        """
+        s = self.settings
+        A, B, RC, rows, cols, vals = [], [], [], [], [], []
+        seg = 0
+        p0 = 0
+        ne = s.n_elements
+        for ir, rot in enumerate(self.rotors):
+            psib = self._psi_blades(rot, self.psi)
+            nw = self._near_wake_points(ir, self.psi, self.beta[ir])
+            rc = s.near_wake_core * rot.chord
+            for b in range(rot.nb):
+                pb = p0 + b * ne
+                # bound vortex, root to tip, strength d * gamma_j
+                A.append(nw[b, :-1, 0, :])
+                B.append(nw[b, 1:, 0, :])
+                for j in range(ne):
+                    rows.append(seg + j); cols.append(pb + j); vals.append(rot.d)
+                seg += ne
+                # trailer at edge j, younger -> older, strength d (gamma_{j-1} - gamma_j)
+                for j in range(ne + 1):
+                    A.append(nw[b, j, :-1, :])
+                    B.append(nw[b, j, 1:, :])
+                    for m in range(s.n_near):
+                        if j - 1 >= 0:
+                            rows.append(seg + m); cols.append(pb + j - 1); vals.append(rot.d)
+                        if j < ne:
+                            rows.append(seg + m); cols.append(pb + j); vals.append(-rot.d)
+                    seg += s.n_near
+                RC.append(np.full(ne + (ne + 1) * s.n_near, rc))
+            p0 += rot.nb * ne
+        gmap = np.zeros((seg, p0))
+        np.add.at(gmap, (np.array(rows), np.array(cols)), np.array(vals, dtype=float))
+        return np.concatenate(A), np.concatenate(B), np.concatenate(RC), gmap
+
+    def _all_sources(self, X=None):
+        a1, b1, g1, rc1 = self._tip_sources(X)
+        a2, b2, rc2, gmap = self._attached_segments()
+        g2 = gmap @ np.concatenate([g.ravel() for g in self.gamma])
+        return (np.concatenate([a1, a2]), np.concatenate([b1, b2]),
+                np.concatenate([g1, g2]), np.concatenate([rc1, rc2]))
+
+    # ----------------------------------------------------------- blade solve
+    def _controls_at(self, rot, psib):
+        c = self.controls
+        suf = rotor_suffix(rot.name)
+        return (c[f"theta0{suf}"] + c[f"theta1s{suf}"] * np.sin(psib)
+                + c[f"theta1c{suf}"] * np.cos(psib))
+
+    def _solve_blades(self):
+        """Bound circulation, loads and inflow of every blade at the current step."""
+        s = self.settings
+        ne = s.n_elements
+        cols, nrm, tan, ut_ext, up_ext, kcoef, theta, psis = [], [], [], [], [], [], [], []
+        for ir, rot in enumerate(self.rotors):
+            psib = self._psi_blades(rot, self.psi)
+            er, et, span, normal = self._blade_frames(rot, psib, self.beta[ir])
+            pts = self._blade_points(rot, psib, self.beta[ir], rot.r)
+            rad_h = rot.R * rot.e + rot.R * (rot.r[None, :] - rot.e) * np.cos(self.beta[ir])[:, None]
+            vblade = (self.omega * rad_h[:, :, None] * et[:, None, :]
+                      + (self.beta_dot[ir][:, None] * rot.R * (rot.r[None, :] - rot.e))[:, :, None]
+                      * normal[:, None, :])
+            cols.append(pts.reshape(-1, 3))
+            nrm.append(np.repeat(normal, ne, axis=0))
+            tan.append(np.repeat(et, ne, axis=0))
+            vrel = self.v_inf[None, None, :] - vblade
+            ut_ext.append(-(vrel * et[:, None, :]).sum(-1).ravel())
+            up_ext.append(-(vrel * normal[:, None, :]).sum(-1).ravel())
+            kcoef.append(np.full(rot.nb * ne, 0.5 * rot.chord * rot.a))
+            th = self._controls_at(rot, psib)[:, None] + rot.twist * (rot.r[None, :] - 0.75)
+            theta.append(th.ravel())
+            psis.append(psib)
+        P = np.concatenate(cols)
+        n = np.concatenate(nrm)
+        et = np.concatenate(tan)
+        a, b, g, rc = self._tip_sources()
+        v_far = segment_velocity(P, a, b, g, rc)
+        aa, bb, rcc, gmap = self._attached_segments()
+        infl = segment_influence(P, aa, bb, rcc)               # (P, S, 3)
+        infl_n = np.einsum("psk,pk->ps", infl, n) @ gmap        # normal velocity per unit gamma
+        ut = np.concatenate(ut_ext) - np.einsum("pk,pk->p", v_far, et)
+        up = np.concatenate(up_ext) - np.einsum("pk,pk->p", v_far, n)
+        k = np.concatenate(kcoef)
+        th = np.concatenate(theta)
+        ut_min = 0.05 * self.omega * self.rotors[0].R
+        active = ut > ut_min          # reverse flow and near-reverse: no lift
+        rhs = np.where(active, k * (th * ut - up), 0.0)
+        mat = np.eye(P.shape[0]) - np.where(active[:, None], k[:, None] * infl_n, 0.0)
+        gam = np.linalg.solve(mat, rhs)
+        up_tot = up - infl_n @ gam
+        alpha = th - up_tot / np.where(active, ut, 1.0)
+        alpha_c = np.clip(alpha, -self.rotors[0].stall, self.rotors[0].stall)
+        gam = np.where(active, k * alpha_c * ut, 0.0)
+        if not np.all(np.isfinite(gam)):
+            raise WakeDivergedError(f"non-finite bound circulation at t = {self.t:.3f} s")
+        v_att = np.einsum("psk,s->pk", infl, gmap @ gam)
+        v_ind = v_far + v_att
+        out = {}
+        p0 = 0
+        for ir, rot in enumerate(self.rotors):
+            sl = slice(p0, p0 + rot.nb * ne)
+            p0 += rot.nb * ne
+            G = gam[sl].reshape(rot.nb, ne)
+            self.gamma[ir] = G
+            UT = ut[sl].reshape(rot.nb, ne)
+            UP = up_tot[sl].reshape(rot.nb, ne)
+            dL = self.rho * G * UT * rot.dr[None, :] * rot.R          # along n
+            drag = (self.rho * G * UP + 0.5 * self.rho * (UT ** 2 + UP ** 2) * rot.chord * rot.cd0
+                    * active[sl].reshape(rot.nb, ne)) * rot.dr[None, :] * rot.R
+            cb = np.cos(self.beta[ir])[:, None]
+            dT = dL * cb
+            ct, cl, cm, cq = blade_sum_loads(dT, drag, rot.r, psis[ir], rot.scale)
+            lam = -v_ind[sl, 2].reshape(rot.nb, ne) / (self.omega * rot.R)
+            l0, l1s, l1c = blade_sum_inflow(lam, rot.r, rot.dr, psis[ir])
+            self._lam0[ir] = max(l0, 0.0)
+            b1s_dot, b1c_dot = flap_rate_mbc(self.beta[ir], self.beta_dot[ir], psis[ir], self.omega)
+            # flap moment about the (equivalent) hinge
+            mflap = (dL * rot.R * (rot.r[None, :] - rot.e)).sum(axis=1)
+            out[rot.name] = dict(CT=ct, CL=cl, CM=cm, CQ=cq, lam0=l0, lam1s=l1s, lam1c=l1c,
+                                 beta1s_dot=b1s_dot, beta1c_dot=b1c_dot, mflap=mflap,
+                                 gamma_max=G.max(axis=1))
+        self._last = out
+        return out
+
+    # ------------------------------------------------------------- marching
+    def _free_velocity(self, X, n_eval):
+        """Velocity [m/s] at the first ``n_eval`` markers of every blade (all rotors)."""
+        a, b, g, rc = self._all_sources(X)
+        tg = np.concatenate([X[ir][:, :n_eval, :].reshape(-1, 3) for ir in range(len(self.rotors))])
+        v = segment_velocity(tg, a, b, g, rc) + self.v_inf
+        out, p0 = [], 0
+        for rot in self.rotors:
+            n = rot.nb * n_eval
+            out.append(v[p0:p0 + n].reshape(rot.nb, n_eval, 3))
+            p0 += n
+        return out
+
+    def _advance_blades(self):
+        """Advance azimuth and flapping by one step (symplectic Euler for free flap)."""
+        s = self.settings
+        self.t += self.dt
+        self.psi += s.azimuth_step
+        for ir, rot in enumerate(self.rotors):
+            psib = self._psi_blades(rot, self.psi)
+            if s.free_flapping:
+                m = self._last[rot.name]["mflap"]
+                acc = -self.omega ** 2 * rot.nu2 * self.beta[ir] + m / rot.inertia
+                self.beta_dot[ir] = self.beta_dot[ir] + self.dt * acc
+                self.beta[ir] = self.beta[ir] + self.dt * self.beta_dot[ir]
+            else:
+                b0, b1c, b1s = self.beta_trim[rot.name]
+                self.beta[ir] = b0 + b1c * np.cos(psib) + b1s * np.sin(psib)
+                self.beta_dot[ir] = self.omega * (-b1c * np.sin(psib) + b1s * np.cos(psib))
+
+    def _new_first_markers(self):
+        """Position of the k = 0 marker (end of each blade's tip trailer)."""
+        out = []
+        for ir, rot in enumerate(self.rotors):
+            nw = self._near_wake_points(ir, self.psi, self.beta[ir])
+            out.append(nw[:, -1, -1, :])
+        return out
+
+    def step(self):
+        """Advance the wake and the blades by one azimuth step."""
+        s = self.settings
+        nf = s.n_free
+        dt = self.dt
+        V = self._free_velocity(self.X, nf + 1)
+        Xp = []
+        for ir in range(len(self.rotors)):
+            X, Vo = self.X[ir], self.Vold[ir]
+            P = np.empty_like(X)
+            if self._first_step:
+                P[:, 1:nf + 1] = X[:, :nf] + dt * V[ir][:, :nf]
+            else:
+                P[:, 1] = X[:, 0] + dt * V[ir][:, 0]
+                P[:, 2:nf + 1] = X[:, 1:nf] + dt * (1.5 * V[ir][:, 1:nf] - 0.5 * Vo[:, :nf - 1])
+            # frozen far-wake buffer: markers past the free wake move rigidly with the
+            # free stream plus the mean axial velocity of the last free revolution
+            # (no self-induced roll-up of the truncated end, no hard cut)
+            nrev = s.steps_per_rev
+            v_ax = (V[ir][:, max(nf + 1 - nrev, 0):nf + 1, 2] - self.v_inf[2]).mean()
+            vbuf = self.v_inf + np.array([0.0, 0.0, min(v_ax, 0.0)])
+            P[:, nf + 1:] = X[:, nf:-1] + dt * vbuf
+            Xp.append(P)
+        self._advance_blades()
+        first = self._new_first_markers()
+        for ir in range(len(self.rotors)):
+            Xp[ir][:, 0] = first[ir]
+        Vc = self._free_velocity(Xp, nf + 1)
+        for ir, rot in enumerate(self.rotors):
+            X, Xo = self.X[ir], self.Xold[ir]
+            Xn = Xp[ir].copy()
+            Xn[:, 1] = X[:, 0] + 0.5 * dt * (V[ir][:, 0] + Vc[ir][:, 1])
+            if self._first_step:
+                Xn[:, 2:nf + 1] = X[:, 1:nf] + 0.5 * dt * (V[ir][:, 1:nf] + Vc[ir][:, 2:nf + 1])
+            else:
+                Xn[:, 2:nf + 1] = ((4.0 * X[:, 1:nf] - Xo[:, :nf - 1]) / 3.0
+                                   + (2.0 / 3.0) * dt * Vc[ir][:, 2:nf + 1])
+            if not np.all(np.isfinite(Xn)):
+                raise WakeDivergedError(f"wake geometry became non-finite at t = {self.t:.3f} s")
+            self.Xold[ir] = X
+            self.X[ir] = Xn
+            self.Vold[ir] = V[ir]
+            G = self.G_tip[ir]
+            G[:, 1:] = G[:, :-1].copy()
+        self._first_step = False
+        out = self._solve_blades()
+        for ir, rot in enumerate(self.rotors):
+            self.G_tip[ir][:, 0] = np.maximum(out[rot.name]["gamma_max"], 0.0)
+        self.step_count += 1
+        return out
+
+    # ------------------------------------------------------------- outputs
+    def induced_velocity(self, points):
+        """Induced velocity of the whole wake at points given in body axes.
+
+        Parameters
+        ----------
+        points : array_like, shape (M, 3)
+            Positions relative to the c.g. in body axes (x fwd, y stbd, z down) [m].
+
+        Returns
+        -------
+        ndarray, shape (M, 3)
+            Induced velocity (free stream excluded) in body axes [m/s].
+        """
+        pts = np.atleast_2d(np.asarray(points, dtype=float))
+        if pts.shape[1] != 3 or not np.all(np.isfinite(pts)):
+            raise ValueError("points must be finite with shape (M, 3) [m]")
+        a, b, g, rc = self._all_sources()
+        v = segment_velocity(self._body_to_comp(pts), a, b, g, rc)
+        return np.stack([v[:, 0], -v[:, 1], -v[:, 2]], axis=1)
+
+    def tip_vortex_radius(self):
+        """Mean radial position r/R of the tip-vortex markers versus wake age.
+
+        Returns
+        -------
+        ages : ndarray [rad]; radius : ndarray, shape (n_rotors, n_ages) [-]
+        """
+        rad = []
+        for ir, rot in enumerate(self.rotors):
+            d = self.X[ir] - rot.hub
+            rad.append(np.hypot(d[..., 0], d[..., 1]).mean(axis=0) / rot.R)
+        return self._ages.copy(), np.array(rad)
+
+    def tip_vortex_height(self):
+        """Mean axial position z/R (up positive, from each hub) versus wake age."""
+        return self._ages.copy(), np.array([(self.X[ir][..., 2] - rot.hub[2]).mean(axis=0) / rot.R
+                                            for ir, rot in enumerate(self.rotors)])
+
+    def current_outputs(self):
+        """Dict of the latest rotor outputs keyed by canonical signal name."""
+        row = {}
+        for rot in self.rotors:
+            suf = rotor_suffix(rot.name)
+            o = self._last[rot.name]
+            for key in ("CT", "CL", "CM", "CQ", "lam0", "lam1s", "lam1c",
+                        "beta1s_dot", "beta1c_dot"):
+                row[f"{key}{suf}"] = float(o[key])
+        return row
+
+    def march(self, n_steps, callback=None):
+        """March ``n_steps`` with the current controls; mean outputs over them."""
+        acc = None
+        for _ in range(int(n_steps)):
+            self.step()
+            row = self.current_outputs()
+            if callback is not None:
+                callback(self)
+            acc = {k: v for k, v in row.items()} if acc is None else {k: acc[k] + row[k] for k in acc}
+        return {k: v / max(int(n_steps), 1) for k, v in acc.items()}
+
+    # ----------------------------------------------------------- snapshots
+    def snapshot(self):
+        """A deep copy of the marching state (wake, blades, controls, time)."""
+        keys = ("t", "psi", "step_count", "X", "Xold", "Vold", "Vbuf", "G_tip", "gamma",
+                "beta", "beta_dot", "_first_step", "_last", "_lam0", "controls", "beta_trim")
+        return {k: copy.deepcopy(getattr(self, k)) for k in keys}
+
+    def restore(self, snap):
+        """Return to a state saved by :meth:`snapshot`."""
+        for k, v in snap.items():
+            setattr(self, k, copy.deepcopy(v))
+
+    # ------------------------------------------------------------ trim/run
+    def trim(self, *args, **kwargs):
+        """Trim the wake; see :func:`aircraft.wake.trim.trim_wake`."""
+        from .trim import trim_wake
+        return trim_wake(self, *args, **kwargs)
+
+    def run(self, controls=None, duration=1.0, *, points=None, about_trim=True,
+            from_trim=True):
+        """March with prescribed swashplate time histories; see :func:`aircraft.wake.trim.run_wake`."""
+        from .trim import run_wake
+        return run_wake(self, controls, duration, points=points, about_trim=about_trim,
+                        from_trim=from_trim)

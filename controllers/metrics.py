@@ -1,0 +1,190 @@
+"""Stability, handling-qualities and loads metrics as plain functions.
+
+Each takes an LTI object (python-control TF/SS/FRD, or a :class:`DelayedLTI`
+with an exact delay) or a callable ``H(s)``, evaluates it on a dense log grid,
+and returns numbers in SI units (rad/s, s) with gains in dB and phases in deg.
+Phases are unwrapped before any crossing is searched (python-control users hit
+wrapping bugs there); crossings are refined by interpolation in log frequency.
+"""
+from __future__ import annotations
+
+import numpy as np
+import control
+
+__all__ = ["frequency_response_of", "crossover_frequency", "gain_phase_margins",
+           "nichols_margin", "disturbance_rejection_bandwidth", "disturbance_rejection_peak",
+           "attitude_bandwidth", "damping_in_band", "rms_response", "DEFAULT_OMEGA"]
+
+#: default evaluation grid [rad/s]
+DEFAULT_OMEGA = np.geomspace(0.01, 200.0, 4000)
+
+
+def frequency_response_of(sys, omega=None):
+    """Complex response of ``sys`` at ``omega`` [rad/s]."""
+    omega = DEFAULT_OMEGA if omega is None else np.asarray(omega, dtype=float)
+    if callable(getattr(sys, "response", None)):
+        # DelayedLTI / FrequencyFunction: exact delays (e^{-jw tau}), no Padé
+        return omega, np.asarray(sys.response(omega), dtype=complex)
+    if isinstance(sys, control.LTI):
+        if sys.ninputs != 1 or sys.noutputs != 1:
+            raise ValueError("metrics need a SISO system")
+        if isinstance(sys, control.FrequencyResponseData):
+            return sys.frequency, np.squeeze(sys.frdata)
+        return omega, np.squeeze(control.frequency_response(sys, omega).complex)
+    if callable(sys):
+        return omega, np.asarray(sys(1j * omega), dtype=complex)
+    raise TypeError(f"cannot take a frequency response of {type(sys).__name__}")
+
+
+def _crossings(x, y, level):
+    """Values of x where y crosses ``level`` (linear interpolation), with direction."""
+    d = y - level
+    idx = np.flatnonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)
+    xs = x[idx] + (x[idx + 1] - x[idx]) * (-d[idx]) / (d[idx + 1] - d[idx])
+    return xs, np.sign(d[idx + 1] - d[idx])
+
+
+def _mag_phase(sys, omega):
+    w, h = frequency_response_of(sys, omega)
+    mag_db = 20 * np.log10(np.maximum(np.abs(h), 1e-300))
+    phase = np.degrees(np.unwrap(np.angle(h)))
+    return w, mag_db, phase
+
+
+def crossover_frequency(loop, omega=None):
+    """Gain-crossover frequency [rad/s] of a broken-loop response (|L| = 1).
+
+    The highest crossing from above is returned (CONDUIT's convention for
+    loops whose gain falls through 0 dB more than once); ``nan`` if none.
+    """
+    w, mag, _ = _mag_phase(loop, omega)
+    xs, direction = _crossings(np.log(w), mag, 0.0)
+    down = xs[direction < 0]
+    return float(np.exp(down[-1])) if down.size else float("nan")
+
+
+def gain_phase_margins(loop, omega=None):
+    """Gain margin [dB], phase margin [deg] and their frequencies [rad/s].
+
+    Returns ``(gm_db, pm_deg, w_180, w_c)``.  GM is taken at the lowest
+    frequency where the *unwrapped* phase crosses -180 deg (mod 360) going down;
+    PM at the gain crossover (:func:`crossover_frequency`).  ``inf`` when there
+    is no crossing.
+    """
+    w, mag, phase = _mag_phase(loop, omega)
+    lw = np.log(w)
+    gm, w180 = float("inf"), float("nan")
+    best = None
+    for k in range(-3, 3):
+        xs, _ = _crossings(lw, phase, -180.0 + 360.0 * k)
+        for x in xs:
+            if best is None or x < best:
+                best = x
+    if best is not None:
+        w180 = float(np.exp(best))
+        gm = float(-np.interp(best, lw, mag))
+    wc = crossover_frequency(loop, omega)
+    if np.isnan(wc):
+        return gm, float("inf"), w180, wc
+    ph = float(np.interp(np.log(wc), lw, phase))
+    pm = (ph + 180.0) % 360.0
+    pm = pm - 360.0 if pm > 180.0 else pm
+    return gm, pm, w180, wc
+
+
+def nichols_margin(loop, omega=None, phase_axis=45.0, gain_axis=6.0):
+    """Normalised distance of the Nichols curve from an elliptical exclusion zone.
+
+    The zone is the ellipse centred on the critical point (-180 deg, 0 dB) with
+    semi-axes ``phase_axis`` [deg] and ``gain_axis`` [dB]; it passes through the
+    Level 1 gain/phase-margin points (6 dB, 45 deg) of MIL-DTL-9490E / ADS-33E
+    and approximates the Nichols-margin exclusion zone of CONDUIT's NicMgG1
+    (Tischler et al., *Practical Methods for Aircraft and Rotorcraft Flight
+    Control Design*, AIAA 2017, Ch. 6), which is not printed in the dissertation.
+
+    Returns ``min_k sqrt((dphi_k/phase_axis)^2 + (g_k/gain_axis)^2) - 1``, where
+    dphi is the phase distance to the nearest odd multiple of 180 deg:
+    >= 0 means the curve stays outside the zone.
+    """
+    _, mag, phase = _mag_phase(loop, omega)
+    dphi = (phase + 180.0) % 360.0
+    dphi = np.where(dphi > 180.0, dphi - 360.0, dphi)
+    dist = np.sqrt((dphi / phase_axis) ** 2 + (mag / gain_axis) ** 2)
+    return float(dist.min() - 1.0)
+
+
+def disturbance_rejection_bandwidth(sys, omega=None):
+    """Frequency [rad/s] where the disturbance response first reaches -3 dB.
+
+    ``sys`` is the output-disturbance response (e.g. phi'/phi_d = 1/(1+L)).
+    ADS-33E-PRF §3.2.9 / Tischler et al. (2017): for L = K/s this is exactly K.
+    """
+    w, mag, _ = _mag_phase(sys, omega)
+    xs, direction = _crossings(np.log(w), mag, -3.0103)
+    up = xs[direction > 0]
+    return float(np.exp(up[0])) if up.size else float("nan")
+
+
+def disturbance_rejection_peak(sys, omega=None):
+    """Peak magnitude [dB] of the disturbance response."""
+    _, mag, _ = _mag_phase(sys, omega)
+    return float(mag.max())
+
+
+def attitude_bandwidth(sys, omega=None, response_type="attitude"):
+    """ADS-33E bandwidth [rad/s] and phase delay [s] of an attitude response.
+
+    ``sys`` is attitude / control input (e.g. phi/delta_lat).  Following
+    ADS-33E-PRF §3.2 (Fig. 3.2-1 definitions): w_180 where the phase is -180 deg;
+    w_BW,phase where the phase is -135 deg; w_BW,gain where the gain is 6 dB
+    above the gain at w_180; bandwidth = min of the two for rate response
+    types (``response_type="rate"``), w_BW,phase alone for attitude-command
+    (ACAH) response types (``"attitude"``, ADS-33E-PRF §3.2); phase delay
+    tau_p = -(phase(2 w_180) + 180) / (57.3 * 2 w_180).
+
+    Returns ``(bandwidth, phase_delay, w_bw_phase, w_bw_gain, w_180)``.
+    """
+    w, mag, phase = _mag_phase(sys, omega)
+    lw = np.log(w)
+    # the attitude response starts near -90 deg (integrator); search the unwrapped phase
+    x180, d180 = _crossings(lw, phase, -180.0)
+    x135, d135 = _crossings(lw, phase, -135.0)
+    if not x180.size or not x135.size:
+        raise ValueError("the attitude response never reaches -180 deg on the frequency grid")
+    w180 = float(np.exp(x180[0]))
+    wbw_phase = float(np.exp(x135[0]))
+    gain180 = float(np.interp(x180[0], lw, mag))
+    xg, dg = _crossings(lw, mag, gain180 + 6.0)
+    down = xg[dg < 0]
+    wbw_gain = float(np.exp(down[-1])) if down.size else float("inf")
+    phase_2w = float(np.interp(np.log(2 * w180), lw, phase))
+    tau_p = -(phase_2w + 180.0) / (np.degrees(1.0) * 2 * w180)
+    if response_type not in ("rate", "attitude"):
+        raise ValueError(f"response_type must be 'rate' or 'attitude', got {response_type!r}")
+    bw = min(wbw_phase, wbw_gain) if response_type == "rate" else wbw_phase
+    return bw, tau_p, wbw_phase, wbw_gain, w180
+
+
+def damping_in_band(poles, w_lo, w_hi):
+    """Smallest damping ratio of the poles with natural frequency in [w_lo, w_hi] rad/s.
+
+    Returns ``inf`` if no pole lies in the band. Unstable poles give negative damping.
+    """
+    poles = np.asarray(poles, dtype=complex)
+    wn = np.abs(poles)
+    sel = (wn >= w_lo) & (wn <= w_hi) & (wn > 0)
+    if not sel.any():
+        return float("inf")
+    return float(np.min(-poles[sel].real / wn[sel]))
+
+
+def rms_response(sys, omega=None, input_band=(0.1, 10.0)):
+    """RMS of the response to unit-intensity white noise band-limited to ``input_band`` [rad/s].
+
+    ``sqrt(1/pi * int |H(jw)|^2 dw)`` over the band: CONDUIT's RmsAcG1-style
+    actuator-activity measure (Tischler et al. 2017, Ch. 6), used as an objective.
+    """
+    lo, hi = input_band
+    w = np.geomspace(lo, hi, 800) if omega is None else np.asarray(omega, float)
+    _, h = frequency_response_of(sys, w)
+    return float(np.sqrt(np.trapezoid(np.abs(h) ** 2, w) / np.pi))

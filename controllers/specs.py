@@ -1,0 +1,170 @@
+"""Specs of Table 7.3 (roll axis, hover) as objects wrapping plain metrics.
+
+A spec maps an :class:`~controllers.emf.EMFDesign` to a value, a level (1/2/3)
+and a normalised margin (>= 0: Level 1 met; -1: on the Level 2/3 boundary).
+A spec set is a plain list: users add their own :class:`Spec`.
+
+Boundary sources (numbers the dissertation does not print are taken from the
+literature and marked as approximations where the source is a chart):
+* GM >= 6 dB, PM >= 45 deg (Level 1): MIL-DTL-9490E / SAE AS94900, as in
+  Table 7.3 StbMgG1; Level 2 4.5 dB / 35 deg (CONDUIT StbMgG1 default).
+* Nichols margin: elliptical approximation of CONDUIT NicMgG1 (see
+  :func:`controllers.metrics.nichols_margin`).
+* Disturbance rejection bandwidth >= 0.9 rad/s (roll, Level 1) and peak <= 5 dB:
+  dissertation §7.5 and Table 7.3 (ADS-33E-PRF §3.2.9 / Tischler et al. 2017);
+  Level 2 boundaries 0.5 rad/s and 7 dB approximate CONDUIT's DrbRoH1/DrpAvH1.
+* Damping: zeta >= 0.35 (0.5-4 rad/s) and >= 0.1 (4-20 rad/s), Table 7.3;
+  Level 2 0.15 / 0.02 approximate CONDUIT's EigDpG1.
+* Attitude bandwidth/phase delay, hover roll (ADS-33E-PRF Fig. 3.3-1): Level 1
+  w_BW >= 2.5 rad/s (target acquisition and tracking) or 2.0 rad/s (all other
+  MTEs) with tau_p <= 0.12 s (tracking) or 0.20 s (all other MTEs); Level 2
+  w_BW >= 1.5 / 1.0 rad/s, tau_p <= 0.20 / 0.30 s.  These rectangles
+  approximate the published charts' Level boundaries: check them against
+  ADS-33E-PRF before relying on a marginal result.
+* Minimum crossover: Level 1 boundary set by the DMO (CrsMnG2), Level 2 at 80 %.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Callable
+
+import numpy as np
+import pandas as pd
+
+from . import metrics as m
+
+__all__ = ["Spec", "BandwidthSpec", "default_specs", "evaluate_specs", "spec_by_name"]
+
+
+@dataclass
+class Spec:
+    """A scalar spec: ``direction='min'`` means value >= boundary is good.
+
+    ``kind`` is ``"hard"`` (must be met: stability), ``"soft"`` (Level 1
+    wanted) or ``"objective"`` (minimised, no boundary).
+    """
+
+    name: str
+    description: str
+    metric: Callable
+    direction: str
+    level1: float = np.nan
+    level2: float = np.nan
+    kind: str = "soft"
+    units: str = ""
+    source: str = ""
+
+    def value(self, design):
+        return float(self.metric(design))
+
+    def evaluate(self, design):
+        v = self.value(design)
+        if self.kind == "objective":
+            return {"value": v, "level": np.nan, "margin": np.nan}
+        span = abs(self.level1 - self.level2) or max(abs(self.level1), 1.0)
+        sign = 1.0 if self.direction == "min" else -1.0
+        if np.isnan(v):
+            return {"value": v, "level": 3, "margin": -np.inf}
+        margin = sign * (v - self.level1) / span
+        level = 1 if margin >= 0 else (2 if sign * (v - self.level2) >= 0 else 3)
+        return {"value": v, "level": level, "margin": float(margin)}
+
+
+@dataclass
+class BandwidthSpec(Spec):
+    """ADS-33E attitude bandwidth (rad/s) and phase delay (s), a 2-D spec."""
+
+    tau1: float = 0.12
+    tau2: float = 0.20
+
+    def value(self, design):
+        bw, tau, *_ = m.attitude_bandwidth(design.attitude_response())
+        return bw, tau
+
+    def evaluate(self, design):
+        try:
+            bw, tau = self.value(design)
+        except ValueError:
+            return {"value": np.nan, "level": 3, "margin": -np.inf}
+        m_bw = (bw - self.level1) / (self.level1 - self.level2)
+        m_tau = (self.tau1 - tau) / (self.tau2 - self.tau1)
+        margin = min(m_bw, m_tau)
+        if margin >= 0:
+            level = 1
+        elif bw >= self.level2 and tau <= self.tau2:
+            level = 2
+        else:
+            level = 3
+        return {"value": bw, "level": level, "margin": float(margin), "phase_delay": tau}
+
+
+def _max_real_pole(design):
+    return float(np.max(design.closed_loop_poles().real))
+
+
+def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other"):
+    """The roll-axis spec set of Table 7.3 (see module docstring for sources)."""
+    gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
+    pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]
+    if mte.startswith("target"):
+        bw1, bw2, tau1, tau2 = 2.5, 1.5, 0.12, 0.20
+    else:
+        bw1, bw2, tau1, tau2 = 2.0, 1.0, 0.20, 0.30
+    return [
+        Spec("EigLcG1", "all eigenvalues in the left half plane", _max_real_pole, "max", 0.0, 0.0,
+             kind="hard", units="1/s", source="generic"),
+        Spec("NicMgG1", "Nichols margin, loop broken at mixer input",
+             lambda d: m.nichols_margin(d.broken_loop()), "min", 0.0, -0.25, kind="hard",
+             source="CONDUIT NicMgG1 (elliptical approximation)"),
+        Spec("StbMgG1.GM", "gain margin, loop broken at mixer input", gm, "min", 6.0, 4.5,
+             kind="hard", units="dB", source="MIL-DTL-9490E"),
+        Spec("StbMgG1.PM", "phase margin, loop broken at mixer input", pm, "min", 45.0, 35.0,
+             kind="hard", units="deg", source="MIL-DTL-9490E"),
+        BandwidthSpec("BnwAtH1", f"roll attitude bandwidth ({mte} MTEs)", None, "min", bw1, bw2,
+                      kind="soft", units="rad/s", source="ADS-33E-PRF Fig. 3.3-1 (approx.)",
+                      tau1=tau1, tau2=tau2),
+        Spec("DrbRoH1", "roll attitude disturbance rejection bandwidth",
+             lambda d: m.disturbance_rejection_bandwidth(d.disturbance_response()), "min", drb_min,
+             min(0.5, 0.55 * drb_min), kind="soft", units="rad/s", source="ADS-33E-PRF §3.2.9; Table 7.3"),
+        Spec("DrpAvH1", "disturbance rejection peak",
+             lambda d: m.disturbance_rejection_peak(d.disturbance_response()), "max", 5.0, 7.0,
+             kind="soft", units="dB", source="Table 7.3; Tischler et al. 2017"),
+        Spec("EigDpG1.hi", "damping ratio, 4-20 rad/s",
+             lambda d: m.damping_in_band(d.closed_loop_poles(), 4.0, 20.0), "min", 0.1, 0.02,
+             kind="soft", source="Table 7.3"),
+        Spec("EigDpG1.lo", "damping ratio, 0.5-4 rad/s",
+             lambda d: m.damping_in_band(d.closed_loop_poles(), 0.5, 4.0), "min", 0.35, 0.15,
+             kind="soft", source="Table 7.3; ADS-33E-PRF"),
+        Spec("CrsMnG2", "minimum crossover frequency", lambda d: m.crossover_frequency(d.broken_loop()),
+             "min", crossover_min, 0.8 * crossover_min, kind="soft", units="rad/s", source="generic"),
+        Spec("CrsLnG1", "crossover frequency (minimised)", lambda d: m.crossover_frequency(d.broken_loop()),
+             "max", kind="objective", units="rad/s", source="generic"),
+        Spec("RmsAcG1.pilot", "mixer-input RMS, pilot input",
+             lambda d: m.rms_response(d.mixer_response_pilot()), "max", kind="objective", source="generic"),
+        Spec("RmsAcG1.dist", "mixer-input RMS, disturbance input",
+             lambda d: m.rms_response(d.mixer_response_disturbance()), "max", kind="objective", source="generic"),
+    ]
+
+
+def spec_by_name(specs, name):
+    for s in specs:
+        if s.name == name:
+            return s
+    raise KeyError(f"no spec named {name!r}")
+
+
+def evaluate_specs(design, specs=None) -> pd.DataFrame:
+    """Evaluate every spec on ``design``: one row per spec.
+
+    Columns: spec, description, kind, value, units, level, margin, met
+    (hard/soft: Level 1 reached), source.
+    """
+    specs = default_specs() if specs is None else specs
+    rows = []
+    for s in specs:
+        r = s.evaluate(design)
+        rows.append({"spec": s.name, "description": s.description, "kind": s.kind,
+                     "value": r["value"], "units": s.units, "level": r["level"],
+                     "margin": r["margin"], "met": bool(r["margin"] >= 0) if s.kind != "objective" else True,
+                     "source": s.source, "phase_delay": r.get("phase_delay", np.nan)})
+    return pd.DataFrame(rows)

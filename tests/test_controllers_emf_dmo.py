@@ -1,0 +1,78 @@
+import numpy as np
+import pytest
+import control
+
+from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default_specs, dmo,
+                         evaluate_specs, fit_equivalent_delay, fit_inverse_plant, hover_roll_plant,
+                         hq_window, optimize, second_order_actuator)
+from controllers.emf import FrequencyFunction
+
+
+@pytest.fixture(scope="module")
+def design():
+    return EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.2), actuator=second_order_actuator())
+
+
+def test_inverse_plant_fit_recovers_first_order_plant_and_delay_fit_recovers_delay():
+    # K/(s+a) with no delay is recovered exactly; a pure delay is recovered by the unit-gain fit
+    plant = control.tf([6.0], [1, 1.5])
+    fitted = fit_inverse_plant(plant)
+    num, den = control.tfdata(fitted)
+    assert num[0][0][-1] == pytest.approx(6.0, rel=1e-6) and den[0][0][-1] == pytest.approx(1.5, rel=1e-6)
+    tau = fit_equivalent_delay(FrequencyFunction(lambda s: np.exp(-0.037 * s)))
+    assert tau == pytest.approx(0.037, rel=1e-9)
+
+
+def test_state_space_closed_loop_matches_exact_frequency_responses(design):
+    cl = design.closed_loop()
+    assert cl.input_labels == ["delta_lat_s", "phi_d"]
+    w = np.array([0.3, 1.0, 3.0])
+    # Padé (3rd order) of 10-30 ms delays: < 0.1 % error below 3 rad/s;
+    # the disturbance path's rate filter s/(s/1000+1) adds < 0.3 % at 3 rad/s.
+    pr = np.squeeze(control.frequency_response(cl[cl.output_labels.index("p"), 0], w).complex)
+    np.testing.assert_allclose(pr, design.roll_rate_response().response(w), rtol=2e-3)
+    dist = np.squeeze(control.frequency_response(cl[cl.output_labels.index("phi_meas"), 1], w).complex)
+    np.testing.assert_allclose(dist, design.disturbance_response().response(w), rtol=5e-3)
+
+
+def test_with_plant_keeps_gains_inverse_plant_and_delay(design):
+    other = design.with_plant(hover_roll_plant(flap_damping=0.3))
+    assert other.gains == design.gains and other.inverse_plant is design.inverse_plant
+    assert other.equivalent_delay == design.equivalent_delay
+    assert other.plant is not design.plant
+
+
+def test_dmo_meets_every_spec_raises_crossover_and_names_limiting_spec(design):
+    first = optimize(design, 1.5, 0.9)
+    assert first.feasible
+    result = dmo(design, progress=False)
+    assert result.feasible and result.limiting
+    assert result.history.feasible.sum() >= 2
+    final = result.history[result.history.feasible].iloc[-1]
+    table = evaluate_specs(result.design, default_specs(final.crossover_min, final.drb_min))
+    assert table[table.kind != "objective"].met.all()
+    assert final.crossover > first.specs.set_index("spec").loc["CrsMnG2", "value"]
+    # independent re-check: python-control's margins on the Padé state space
+    gm, pm, *_ = control.stability_margins(result.design.broken_loop_statespace(pade_order=4))
+    assert 20 * np.log10(gm) >= 6.0 - 0.5 and pm >= 45.0 - 1.0
+    assert np.all(result.design.closed_loop_poles().real < 0)
+    assert "limiting spec" in result.message
+    fig = hq_window([result.design], default_specs(final.crossover_min, final.drb_min))
+    assert len(fig.axes) >= 10
+
+
+def test_infeasible_request_ends_with_a_report_not_a_trace(design):
+    result = dmo(design, crossover_start=2.0, drb_start=20.0, progress=False,
+                 settings=DMOSettings(max_steps=2))
+    assert not result.feasible and result.design is None
+    assert "DrbRoH1" in result.limiting
+    assert "unmet" in result.message and "DrbRoH1" in result.message
+
+
+def test_bad_inputs_are_rejected():
+    with pytest.raises(ValueError, match="delay must be >= 0"):
+        hover_roll_plant(delay=-0.1)
+    with pytest.raises(ValueError, match="sensor_delay"):
+        EMFDesign(hover_roll_plant(), PIDGains(1, 1, 1), sensor_delay=-1)
+    with pytest.raises(ValueError, match="order must be"):
+        fit_inverse_plant(control.tf([1], [1, 1]), order="2/3")
