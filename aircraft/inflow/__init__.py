@@ -1,6 +1,22 @@
-"""Inflow models: one interface (:class:`InflowModel`), perturbation models about a trim."""
+"""Inflow models: one interface (:class:`InflowModel`), perturbation models about a trim.
+
+::
+
+    InflowModel (base.py: conventions, names, numerical linearisation)
+      ├─ PittPeters / IsolatedRotors          (pitt_peters.py, Eq. 1.10, K_R of Eq. 2.29)
+      ├─ ClimbingLowerRotor / DynamicClimb    (coaxial.py, §2.2.2.3-2.2.2.4, Eq. 2.7)
+      └─ IdentifiedInflow                     (identified.py: any identified model, Padé delays)
+    published.py: the dissertation's printed identified models, as reference data
+"""
 from .base import (InflowModel, RotorOperatingPoint, flap_rate_names, inflow_names,
                    load_names, rotor_suffix)
+from .pitt_peters import (InflowError, IsolatedRotors, PittPeters, mlbar_from_statespace,
+                          momentum_inflow, pitt_peters_matrices)
+from .coaxial import ClimbingLowerRotor, DynamicClimb
+from .identified import IdentifiedInflow
+from . import published
 
 __all__ = ["InflowModel", "RotorOperatingPoint", "flap_rate_names", "inflow_names",
-           "load_names", "rotor_suffix"]
+           "load_names", "rotor_suffix", "InflowError", "IsolatedRotors", "PittPeters",
+           "mlbar_from_statespace", "momentum_inflow", "pitt_peters_matrices",
+           "ClimbingLowerRotor", "DynamicClimb", "IdentifiedInflow", "published"]

@@ -148,6 +148,13 @@ class InflowModel(ABC):
         the blade sees ``lambda(r, psi) = lam0 + lam1s r sin psi + lam1c r cos psi``.
         """
 
+    def set_trim(self, x: np.ndarray, loads: np.ndarray, ops: tuple) -> None:
+        """Called once the aircraft is trimmed (x: inflow states at trim).
+
+        Models with quantities frozen at trim (e.g. the climbing lower rotor's
+        climb, §2.2.2.3) store them here; the default does nothing.
+        """
+
     def linear(self, loads: np.ndarray, ops: tuple):
         """Perturbation model about the equilibrium with ``loads``: a named
         :class:`control.StateSpace` (inputs ``input_names``, outputs

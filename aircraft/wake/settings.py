@@ -42,6 +42,14 @@ class WakeSettings:
         the flapping at the prescribed (trim) harmonics.
     initial_wake_kappa : float
         Induced-power factor used for the prescribed (Landgrebe) initial wake.
+    tip_vortex_strength : {"thrust_equivalent", "peak"}
+        Circulation the rolled-up tip vortex takes from the blade.  The inboard
+        trailed sheet is not followed beyond the near wake, so the default gives the
+        tip vortex the thrust-weighted blade circulation ``int G r dr / int r dr``
+        (the uniform-loading circulation with the same thrust), which keeps the far
+        wake's momentum flux consistent with the rotor thrust; ``"peak"`` uses the
+        peak bound circulation (classical roll-up of everything outboard of it),
+        which over-predicts the inflow when the inboard sheet is omitted.
     """
 
     azimuth_step: float = math.radians(10.0)
@@ -55,6 +63,7 @@ class WakeSettings:
     kinematic_viscosity: float = 1.5e-5
     free_flapping: bool = False
     initial_wake_kappa: float = 1.15
+    tip_vortex_strength: str = "thrust_equivalent"
 
     def __post_init__(self):
         if not 0.0 < self.azimuth_step <= math.radians(30.0):
@@ -71,6 +80,9 @@ class WakeSettings:
         for name in ("core_radius", "near_wake_core", "kinematic_viscosity"):
             if not getattr(self, name) > 0:
                 raise WakeSettingsError(f"{name} must be positive, got {getattr(self, name)!r}")
+        if self.tip_vortex_strength not in ("thrust_equivalent", "peak"):
+            raise WakeSettingsError("tip_vortex_strength must be 'thrust_equivalent' or 'peak', "
+                                    f"got {self.tip_vortex_strength!r}")
         if self.core_delta < 0:
             raise WakeSettingsError("core_delta must be >= 0")
 

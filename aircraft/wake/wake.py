@@ -105,7 +105,7 @@ class FreeVortexWake:
         for rc in config.rotors:
             # half-cosine spacing: panels cluster at the tip where the load drops
             sgrid = np.linspace(0.0, 1.0, s.n_elements + 1)
-            r_edge = rc.root_cutout + (1.0 - rc.root_cutout) * np.sin(0.5 * np.pi * sgrid)
+            r_edge = rc.root_cutout + (1.0 - rc.root_cutout) * sgrid
             hub_body = np.array(rc.hub_position, dtype=float)
             hub = self._body_to_comp(hub_body, absolute=True)
             nu2 = rc.flap_frequency ** 2
@@ -371,7 +371,9 @@ class FreeVortexWake:
             mflap = (dL * rot.R * (rot.r[None, :] - rot.e)).sum(axis=1)
             out[rot.name] = dict(CT=ct, CL=cl, CM=cm, CQ=cq, lam0=l0, lam1s=l1s, lam1c=l1c,
                                  beta1s_dot=b1s_dot, beta1c_dot=b1c_dot, mflap=mflap,
-                                 gamma_max=G.max(axis=1))
+                                 gamma_max=G.max(axis=1),
+                                 gamma_eq=(G * (rot.r * rot.dr)[None, :]).sum(axis=1)
+                                 / (rot.r * rot.dr).sum())
         self._last = out
         return out
 
@@ -460,7 +462,8 @@ class FreeVortexWake:
         self._first_step = False
         out = self._solve_blades()
         for ir, rot in enumerate(self.rotors):
-            self.G_tip[ir][:, 0] = np.maximum(out[rot.name]["gamma_max"], 0.0)
+            key = "gamma_max" if self.settings.tip_vortex_strength == "peak" else "gamma_eq"
+            self.G_tip[ir][:, 0] = np.maximum(out[rot.name][key], 0.0)
         self.step_count += 1
         return out
 

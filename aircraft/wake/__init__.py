@@ -1,0 +1,33 @@
+"""Lightweight time-accurate free-vortex wake for single and coaxial rotors.
+
+Architecture
+------------
+::
+
+    settings.py     WakeSettings, FlightCondition (dataclasses, SI / rad)
+    biot_savart.py  segment_velocity (numba, parallel over targets), its numpy
+                    reference, segment_influence, Vatistas n=2 core + core growth;
+                    array-in / array-out so a GPU kernel can slot in behind it
+    wake.py         FreeVortexWake: lifting-line blades (linear lift, stall limit,
+                    Kutta-Joukowski), rigid ~30 deg near wake, one free tip vortex per
+                    blade marched with a PC2B-type predictor-corrector, frozen
+                    far-wake buffer, rigid or free (spring-hinge) flapping
+    outputs.py      blade-sum loads and inflow harmonics (Eqs. 2.22, 2.25, 2.26)
+    trim.py         trim_wake (thrust / coaxial torque balance, zero hub moments),
+                    run_wake (prescribed controls -> pandas.DataFrame)
+    sweeps.py       run_sweeps: sweeps/doublets in parallel processes with tqdm and
+                    a disk cache keyed on a hash of every input
+
+Conventions follow :mod:`aircraft.inflow.base` (each rotor in its own frame).
+"""
+from .settings import WakeSettings, FlightCondition, WakeSettingsError
+from .biot_savart import segment_velocity, segment_velocity_numpy, core_radius
+from .wake import FreeVortexWake, WakeDivergedError
+from .trim import WakeTrim, WakeTrimError, trim_wake, run_wake
+from .sweeps import run_sweeps, SweepSpec
+
+__all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError",
+           "segment_velocity", "segment_velocity_numpy", "core_radius",
+           "FreeVortexWake", "WakeDivergedError",
+           "WakeTrim", "WakeTrimError", "trim_wake", "run_wake",
+           "run_sweeps", "SweepSpec"]

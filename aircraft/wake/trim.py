@@ -1,0 +1,279 @@
+"""Trim of the free-vortex wake and marching with prescribed controls."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ..inflow.base import rotor_suffix
+
+__all__ = ["WakeTrim", "WakeTrimError", "trim_wake", "run_wake"]
+
+
+class WakeTrimError(RuntimeError):
+    """Raised when the wake trim does not converge."""
+
+
+@dataclass
+class WakeTrim:
+    """Result of :func:`trim_wake`.
+
+    Attributes
+    ----------
+    controls : dict
+        Trimmed swashplate angles [rad] by canonical name.
+    outputs : dict
+        Loads, torque, inflow harmonics and flap rates averaged over the last
+        revolution (canonical names; ``CQ`` torque coefficients included).
+    converged : bool
+    iterations : int
+    residual : float
+        Largest absolute load error [-] at the last iteration.
+    history : list of dict
+    """
+
+    controls: dict
+    outputs: dict
+    converged: bool
+    iterations: int
+    residual: float
+    history: list = field(default_factory=list)
+
+    def to_pandas(self):
+        """History of the iterations as a DataFrame."""
+        return pd.DataFrame(self.history)
+
+
+def _targets(wake, ct, mode):
+    names = [r.name for r in wake.rotors]
+    cfg = wake.config
+    if ct is None:
+        ct = cfg.trim_ct if len(cfg.trim_ct) == len(names) else None
+        if ct is None:
+            raise WakeTrimError("no thrust target: pass ct= or set AircraftConfig.trim_ct")
+    ct = np.atleast_1d(np.asarray(ct, dtype=float))
+    if mode not in ("thrust", "torque_balance"):
+        raise ValueError(f"mode must be 'thrust' or 'torque_balance', got {mode!r}")
+    if mode == "torque_balance" and len(names) != 2:
+        raise ValueError("mode='torque_balance' needs a coaxial (two-rotor) configuration")
+    if mode == "thrust" and ct.size != len(names):
+        raise ValueError(f"ct needs one value per rotor ({len(names)}), got {ct.size}")
+    if np.any(ct <= 0):
+        raise ValueError("thrust coefficient targets must be positive")
+    return ct
+
+
+def _residual(wake, out, ct, mode, cyclic):
+    res = []
+    names = [r.name for r in wake.rotors]
+    if mode == "thrust":
+        for i, n in enumerate(names):
+            res.append(out[f"CT{rotor_suffix(n)}"] - ct[i])
+    else:
+        su, sl = rotor_suffix(names[0]), rotor_suffix(names[1])
+        res.append(out[f"CT{su}"] + out[f"CT{sl}"] - ct.sum())
+        res.append(out[f"CQ{su}"] - out[f"CQ{sl}"])
+    if cyclic:
+        for n in names:
+            res += [out[f"CL{rotor_suffix(n)}"], out[f"CM{rotor_suffix(n)}"]]
+    return np.array(res)
+
+
+def _unknowns(wake, cyclic):
+    names = []
+    for r in wake.rotors:
+        names.append(f"theta0{rotor_suffix(r.name)}")
+    if cyclic:
+        for r in wake.rotors:
+            names += [f"theta1s{rotor_suffix(r.name)}", f"theta1c{rotor_suffix(r.name)}"]
+    return names
+
+
+def _jacobian_estimate(wake, ct, mode, cyclic):
+    """Blade-element/momentum estimate of d(residual)/d(controls) [1/rad]."""
+    blocks = []
+    for i, rot in enumerate(wake.rotors):
+        sigma = rot.nb * rot.chord / (math.pi * rot.R)
+        c = ct[i] if mode == "thrust" else ct.sum() / len(wake.rotors)
+        lam = math.sqrt(c / 2.0)
+        dct = (sigma * rot.a / 6.0) / (1.0 + sigma * rot.a / (16.0 * lam))
+        blocks.append((dct, 1.5 * lam * dct, sigma * rot.a / 16.0))
+    n = len(wake.rotors)
+    J_col = np.zeros((n, n))
+    for i, (dct, dcq, _) in enumerate(blocks):
+        if mode == "thrust":
+            J_col[i, i] = dct
+        else:
+            J_col[0, i] = dct
+            J_col[1, i] = dcq if i == 0 else -dcq
+    if not cyclic:
+        return J_col
+    J = np.zeros((3 * n, 3 * n))
+    J[:n, :n] = J_col
+    for i, (_, _, dcyc) in enumerate(blocks):
+        # rigid hub: C_L = -sigma a theta1s / 16, C_M = -sigma a theta1c / 16
+        J[n + 2 * i, n + 2 * i] = -dcyc
+        J[n + 2 * i + 1, n + 2 * i + 1] = -dcyc
+    return J
+
+
+def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_per_iter=1,
+              tol=2e-5, max_iter=20, damping=0.8):
+    """Time-march the wake to a periodic state and adjust the controls to the targets.
+
+    Parameters
+    ----------
+    wake : FreeVortexWake
+    ct : float or sequence, optional
+        Thrust-coefficient targets: one per rotor (``mode="thrust"``), or per rotor
+        with only their sum used (``mode="torque_balance"``).  Default
+        ``config.trim_ct``.
+    mode : {"thrust", "torque_balance"}
+        ``"torque_balance"`` (coaxial): total thrust and equal torques; the thrust
+        split is the result.
+    cyclic : bool, optional
+        Also trim each rotor's cyclic to zero hub moments C_L = C_M = 0.  Default:
+        True in forward flight, False in hover (axisymmetric).
+    settle_revs : int
+        Revolutions marched before the first update.
+    revs_per_iter : int
+        Revolutions averaged per iteration.
+    tol : float
+        Convergence tolerance on every residual [-].
+    max_iter : int
+    damping : float
+        Fraction of the (quasi-)Newton step taken.
+
+    Returns
+    -------
+    WakeTrim
+    """
+    ct = _targets(wake, ct, mode)
+    if cyclic is None:
+        cyclic = wake.flight.speed > 1.0
+    names = _unknowns(wake, cyclic)
+    J = _jacobian_estimate(wake, ct, mode, cyclic)
+    nrev = wake.settings.steps_per_rev
+    if all(abs(wake.controls[n]) < 1e-12 for n in names):
+        # blade-element/momentum start: CT = sigma a / 2 (theta75 / 3 - lam / 2)
+        for i, rot in enumerate(wake.rotors):
+            sigma = rot.nb * rot.chord / (math.pi * rot.R)
+            c = ct[i] if mode == "thrust" else ct.sum() / len(wake.rotors)
+            lam = 1.15 * math.sqrt(c / 2.0) + wake.flight.speed * math.sin(wake.flight.alpha) / (
+                wake.omega * rot.R)
+            wake.controls[f"theta0{rotor_suffix(rot.name)}"] = 3.0 * (2.0 * c / (sigma * rot.a) + lam / 2.0)
+    wake.march(settle_revs * nrev)
+    history = []
+    x = np.array([wake.controls[n] for n in names])
+    res_prev = x_prev = None
+    converged = False
+    out = None
+    for it in range(1, max_iter + 1):
+        out = wake.march(revs_per_iter * nrev)
+        res = _residual(wake, out, ct, mode, cyclic)
+        history.append({**{n: wake.controls[n] for n in names}, **out,
+                        "iteration": it, "residual": float(np.abs(res).max())})
+        if np.abs(res).max() < tol:
+            converged = True
+            break
+        if res_prev is not None:
+            # Broyden update of the Jacobian from the last step
+            dx, dr = x - x_prev, res - res_prev
+            if np.dot(dx, dx) > 0:
+                J = J + np.outer(dr - J @ dx, dx) / np.dot(dx, dx)
+        step = -np.linalg.solve(J, res)
+        step = np.clip(step, -math.radians(2.0), math.radians(2.0))
+        x_prev, res_prev = x.copy(), res.copy()
+        x = x + damping * step
+        for n, v in zip(names, x):
+            wake.controls[n] = float(v)
+    result = WakeTrim(controls=dict(wake.controls), outputs=out, converged=converged,
+                      iterations=len(history), residual=history[-1]["residual"], history=history)
+    wake._trim_state = wake.snapshot()
+    wake.trim_result = result
+    return result
+
+
+def _control_function(spec, name):
+    """A callable of time [s] from a float, a callable, or a (t, u) pair of arrays."""
+    if callable(spec):
+        return spec
+    if isinstance(spec, tuple) and len(spec) == 2:
+        tt, uu = (np.asarray(spec[0], dtype=float), np.asarray(spec[1], dtype=float))
+        if tt.shape != uu.shape or tt.ndim != 1 or np.any(np.diff(tt) <= 0):
+            raise ValueError(f"control {name!r}: (t, u) must be 1-D arrays of equal length "
+                             "with increasing t [s]")
+        return lambda t: float(np.interp(t, tt, uu, left=uu[0], right=uu[-1]))
+    v = float(spec)
+    return lambda t: v
+
+
+def run_wake(wake, controls=None, duration=1.0, *, points=None, about_trim=True, from_trim=True,
+             progress=False):
+    """March with prescribed swashplate histories and record the outputs.
+
+    Parameters
+    ----------
+    wake : FreeVortexWake
+    controls : dict, optional
+        ``{name: float | callable(t) | (t_array, u_array)}`` [rad] for any of the
+        canonical controls; others are held.
+    duration : float
+        Simulated time [s].
+    points : dict, optional
+        ``{label: (x, y, z)}`` off-rotor points in body axes [m]; each adds columns
+        ``vx_label, vy_label, vz_label`` (body axes, on the first rotor's Omega R).
+    about_trim : bool
+        If True the controls are perturbations added to the trimmed values.
+    from_trim : bool
+        If True (and a trim exists) start from the trimmed wake state.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``t`` [s], controls [rad], ``CT/CL/CM/CQ``, ``lam0/lam1s/lam1c``,
+        ``beta1s_dot/beta1c_dot`` [rad/s] per rotor, requested velocities.
+    """
+    controls = {} if controls is None else dict(controls)
+    unknown = set(controls) - set(wake.control_names)
+    if unknown:
+        raise ValueError(f"unknown control names {sorted(unknown)}; have {wake.control_names}")
+    if not duration > 0:
+        raise ValueError(f"duration must be positive [s], got {duration!r}")
+    if from_trim and wake._trim_state is not None:
+        wake.restore(wake._trim_state)
+    base = dict(wake.controls)
+    funcs = {n: _control_function(v, n) for n, v in controls.items()}
+    labels = list((points or {}).keys())
+    pts = np.array([points[k] for k in labels], dtype=float).reshape(-1, 3)
+    tip_speed = wake.omega * wake.rotors[0].R
+    n_steps = int(math.ceil(duration / wake.dt - 1e-9))
+    t0 = wake.t
+    rows = []
+    it = range(n_steps)
+    if progress:
+        from tqdm.auto import tqdm
+        it = tqdm(it, desc="wake run", leave=False)
+
+    def record():
+        row = {"t": wake.t - t0}
+        row.update({n: wake.controls[n] for n in wake.control_names})
+        row.update(wake.current_outputs())
+        if labels:
+            v = wake.induced_velocity(pts) / tip_speed
+            for k, lab in enumerate(labels):
+                row[f"vx_{lab}"], row[f"vy_{lab}"], row[f"vz_{lab}"] = v[k]
+        rows.append(row)
+
+    record()
+    for _ in it:
+        tn = wake.t + wake.dt - t0
+        for n in wake.control_names:
+            if n in funcs:
+                u = funcs[n](tn)
+                wake.controls[n] = base[n] + u if about_trim else u
+        wake.step()
+        record()
+    return pd.DataFrame(rows)
