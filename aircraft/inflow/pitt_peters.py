@@ -168,9 +168,11 @@ class PittPeters(InflowModel):
             lam0 = momentum_inflow(loads[3 * k], op.mu, op.mu_z)
             guess += [lam0, 0.0, 0.0]
         guess = np.array(guess)
-        sol, info, ier, msg = fsolve(lambda x: self.derivatives(x, loads, ops) / np.array(
-            [o.omega for o in ops for _ in range(3)]), guess, full_output=True, xtol=1e-13)
-        if ier != 1 or not np.all(np.isfinite(sol)):
+        scale = np.array([o.omega for o in ops for _ in range(3)])
+        residual = lambda x: self.derivatives(x, loads, ops) / scale
+        sol, info, ier, msg = fsolve(residual, guess, full_output=True, xtol=1e-12)
+        # judge by the residual (fsolve's own flag complains near machine precision)
+        if not np.all(np.isfinite(sol)) or np.max(np.abs(residual(sol))) > 1e-12:
             raise InflowError(f"no steady inflow for loads {loads}: {msg}")
         return sol
 
