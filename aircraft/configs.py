@@ -71,7 +71,11 @@ class RotorConfig:
     hub_position : tuple of float
         Hub centre in body axes relative to the c.g. [m] (x fwd, y stbd, z down).
     shaft_tilt : float
-        Forward shaft tilt [rad] (positive tilts the thrust forward).
+        Forward shaft tilt [rad] (positive tilts the thrust forward; not yet used
+        by the aircraft model, which assumes shafts normal to body x).
+    flap_inertia : float or None
+        Blade flap inertia about the hinge [kg m^2]; None: uniform blade of
+        ``blade_mass`` (m L^2 / 3).
     """
 
     name: str
@@ -91,8 +95,11 @@ class RotorConfig:
     direction: int = 1
     hub_position: tuple = (0.0, 0.0, -2.0)
     shaft_tilt: float = 0.0
+    flap_inertia: float | None = None
 
     def __post_init__(self):
+        if self.flap_inertia is not None and not self.flap_inertia > 0:
+            raise ValueError("RotorConfig.flap_inertia must be positive [kg m^2]")
         for attr in ("radius", "omega", "chord", "lift_slope", "blade_mass"):
             if not getattr(self, attr) > 0:
                 raise ValueError(f"RotorConfig.{attr} must be positive, got {getattr(self, attr)!r}")
@@ -125,7 +132,9 @@ class RotorConfig:
 
     @property
     def blade_flap_inertia(self) -> float:
-        """Flap inertia of one uniform blade about the (equivalent) hinge [kg m^2]."""
+        """Flap inertia of one blade about the (equivalent) hinge [kg m^2]."""
+        if self.flap_inertia is not None:
+            return self.flap_inertia
         length = self.radius * (1.0 - self.hinge_offset)
         return self.blade_mass * length ** 2 / 3.0
 
@@ -220,6 +229,11 @@ class AircraftConfig:
 ASSUMPTIONS = {
     "coaxial.chord": "0.475 m: per-rotor solidity 0.065 so that C_T/sigma ~ 0.08/0.066 "
                      "at the hover trim C_T (0.0053 upper, 0.0043 lower); XH-59A-like.",
+    "coaxial.flap_inertia": "4,700 kg m^2 per blade (Lock number ~5.3): a uniform 513 kg blade "
+                            "would give 11,900 kg m^2 and gamma = 2.1, whose coning damping (zeta ~0.07) "
+                            "contradicts the coning-mode damping ~0.22 of Table 7.1 (gamma ~ 16 zeta nu); "
+                            "the ABC-derived blade carries its mass inboard. Calibrated to that printed "
+                            "characteristic, not to any result we compare against.",
     "coaxial.twist": "-10 deg linear: typical of ABC/X2 hingeless rotors (not printed).",
     "coaxial.root_cutout": "0.15 R.",
     "coaxial.hinge_offset": "0.10 R equivalent hinge for a stiff hingeless blade; the "
@@ -255,7 +269,7 @@ def coaxial_compound(cruise: bool = False) -> AircraftConfig:
     blade_mass = 1133.0 * LB
     common = dict(radius=radius, omega=omega, n_blades=4, chord=0.475,
                   twist=math.radians(-10.0), root_cutout=0.15, hinge_offset=0.10,
-                  flap_frequency=1.5, lag_frequency=1.3, blade_mass=blade_mass)
+                  flap_frequency=1.5, lag_frequency=1.3, blade_mass=blade_mass, flap_inertia=4700.0)
     upper = RotorConfig(name="U", direction=1, hub_position=(0.0, 0.0, -2.4), **common)
     lower = RotorConfig(name="L", direction=-1, hub_position=(0.0, 0.0, -2.4 + spacing), **common)
     return AircraftConfig(

@@ -47,6 +47,10 @@ class IdentifiedInflow(InflowModel):
             raise InflowError(f"identified model inputs {inputs} must be {loads} (+ {rates})")
         if list(sys.output_labels) != inflow_names(self.rotors):
             raise InflowError(f"identified model outputs {sys.output_labels} must be {inflow_names(self.rotors)}")
+        if np.any(np.abs(np.asarray(sys.D)) > 1e-12):
+            # a direct load -> inflow feedthrough would close an algebraic loop with
+            # the blade-element loads; identified inflow models are strictly proper
+            raise InflowError("identified inflow model has a feedthrough (D != 0): not supported")
         if sys.nstates and np.max(np.linalg.eigvals(sys.A).real) >= 0:
             raise InflowError("the identified inflow model is unstable: refusing to use it in the aircraft")
         self.system = sys
@@ -74,7 +78,7 @@ class IdentifiedInflow(InflowModel):
         return self.system.A @ np.asarray(x, float) + self.system.B @ self._u(loads, rates)
 
     def inflow(self, x, loads, ops):
-        return self.inflow_ref + self.system.C @ np.asarray(x, float) + self.system.D @ self._u(loads, None)
+        return self.inflow_ref + self.system.C @ np.asarray(x, float)   # D == 0 (checked)
 
     def steady_state(self, loads, ops):
         return -np.linalg.solve(self.system.A, self.system.B @ self._u(loads, None))
