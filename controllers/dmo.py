@@ -60,6 +60,12 @@ class DMOSettings:
     verify_tolerance_db: float = 0.5   #: optimiser vs python-control GM agreement
     verify_tolerance_deg: float = 2.0  #: ... PM agreement
     actuator_weight: float = 0.1
+    #: the "gain below -GM past -180 deg" constraint applies above these fractions
+    #: of the crossover boundary (below, the integrator's -180 deg region is
+    #: allowed); :func:`optimize` tries them in turn and keeps the first design that
+    #: passes the python-control re-check (low-frequency phugoid modes of a free
+    #: aircraft may need the lower values)
+    phase_constraint_from: tuple = (0.5, 0.2, 0.1)
     ipopt: dict = field(default_factory=lambda: {"ipopt.print_level": 0, "print_time": False,
                                                  "ipopt.max_iter": 500, "ipopt.tol": 1e-8})
 
@@ -111,7 +117,7 @@ class DMOResult:
         return fig
 
 
-def _problem(design, crossover_min, drb_min, settings, phase):
+def _problem(design, crossover_min, drb_min, settings, phase, phase_from):
     w = np.asarray(settings.omega, float)
     s = 1j * w
     q = design._g(s) * design._sensor(s)
@@ -147,7 +153,7 @@ def _problem(design, crossover_min, drb_min, settings, phase):
     # past the phase crossover the gain must be below -GM (no conditionally stable
     # loop above half the crossover boundary; the integrator's low-frequency
     # -180 deg region is allowed and checked by the eigenvalue spec)
-    hi = np.flatnonzero(w >= 0.5 * crossover_min)
+    hi = np.flatnonzero(w >= phase_from * crossover_min)
     opti.subject_to((gdb[hi] + settings.gm_db) * beyond[hi] <= slack)
     low = w <= drb_min
     if low.any():
@@ -194,9 +200,22 @@ def optimize(design, crossover_min, drb_min, specs=None, settings=None, x0=None)
     """
     settings = settings or DMOSettings()
     specs = specs if specs is not None else default_specs(crossover_min, drb_min)
+    fractions = settings.phase_constraint_from
+    fractions = (fractions,) if np.isscalar(fractions) else tuple(fractions)
+    best = None
+    for phase_from in fractions:
+        res = _optimize_once(design, crossover_min, drb_min, specs, settings, x0, phase_from)
+        if res.feasible:
+            return res
+        if best is None or len(res.unmet) < len(best.unmet):
+            best = res
+    return best
+
+
+def _optimize_once(design, crossover_min, drb_min, specs, settings, x0, phase_from):
     nvar = 2 if settings.tie_integral else 3
     start = np.full(nvar, 0.1) if x0 is None else np.asarray(x0, float)
-    opti, x, slack = _problem(design, crossover_min, drb_min, settings, phase=1)
+    opti, x, slack = _problem(design, crossover_min, drb_min, settings, 1, phase_from)
     opti.set_initial(x, start)
     opti.solver("ipopt", settings.ipopt)
     try:
@@ -206,7 +225,7 @@ def optimize(design, crossover_min, drb_min, specs=None, settings=None, x0=None)
         x1, s1 = opti.debug.value(x), float(opti.debug.value(slack))
     xbest = x1
     if s1 <= 1e-6:
-        opti2, x2v, _ = _problem(design, crossover_min, drb_min, settings, phase=2)
+        opti2, x2v, _ = _problem(design, crossover_min, drb_min, settings, 2, phase_from)
         opti2.set_initial(x2v, x1)
         opti2.solver("ipopt", settings.ipopt)
         try:

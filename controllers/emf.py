@@ -300,8 +300,17 @@ class EMFDesign:
             if False else control.series(self.plant.to_statespace(pade_order), control.ss(self.actuator),
                                          control.ss(sensor), control.ss(c))
 
-    def closed_loop_poles(self, pade_order=3):
-        return self.closed_loop(pade_order).poles()
+    def closed_loop_poles(self, pade_order=3, tol=1e-4):
+        """Poles of the minimal realisation of :meth:`closed_loop`.
+
+        The interconnect integrates p to get phi; when the bare-airframe p/delta
+        has a zero at the origin (a free hovering aircraft: lateral stick gives a
+        steady attitude, not a steady rate) that integrator cancels it, leaving an
+        uncontrollable mode at s = 0 which floating point places at +-1e-3.  The
+        minimal realisation (tolerance ``tol``) removes such cancelled modes; all
+        modes that the pilot or disturbance inputs excite are kept.
+        """
+        return control.minreal(self.closed_loop(pade_order), tol=tol, verbose=False).poles()
 
     def stick_impulse(self, duration=6.0, dt=0.01, width=0.25, amplitude=1.0):
         """Response to a lateral-stick pulse: TimeResponseData with named signals."""
