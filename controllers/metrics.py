@@ -13,7 +13,8 @@ import control
 
 __all__ = ["frequency_response_of", "crossover_frequency", "gain_phase_margins",
            "nichols_margin", "disturbance_rejection_bandwidth", "disturbance_rejection_peak",
-           "attitude_bandwidth", "damping_in_band", "rms_response", "DEFAULT_OMEGA"]
+           "attitude_bandwidth", "damping_in_band", "rms_response", "open_loop_onset_point",
+           "DEFAULT_OMEGA"]
 
 #: default evaluation grid [rad/s]
 DEFAULT_OMEGA = np.geomspace(0.01, 200.0, 4000)
@@ -188,3 +189,27 @@ def rms_response(sys, omega=None, input_band=(0.1, 10.0)):
     w = np.geomspace(lo, hi, 800) if omega is None else np.asarray(omega, float)
     _, h = frequency_response_of(sys, w)
     return float(np.sqrt(np.trapezoid(np.abs(h) ** 2, w) / np.pi))
+
+
+def open_loop_onset_point(loop, pilot_to_actuator, stick_amplitude, rate_limit, omega=None):
+    """Open-loop onset point (OLOP, Duda 1997) for actuator rate limiting.
+
+    The onset frequency is the lowest frequency at which a sinusoidal stick input
+    of amplitude ``stick_amplitude`` drives the actuator (mixer input) at its
+    ``rate_limit``: ``w |delta_mx/delta(jw)| A = R``. The OLOP is the broken-loop
+    response ``loop`` at that frequency on the Nichols chart.
+
+    Returns ``(phase_deg, gain_db, w_onset)``; ``(nan, nan, inf)`` if the rate
+    limit is never reached on the grid.
+    """
+    w = DEFAULT_OMEGA if omega is None else np.asarray(omega, float)
+    _, h_act = frequency_response_of(pilot_to_actuator, w)
+    rate = w * np.abs(h_act) * stick_amplitude
+    above = np.flatnonzero(rate >= rate_limit)
+    if not above.size:
+        return float("nan"), float("nan"), float("inf")
+    k = above[0]
+    w_on = w[k] if k == 0 else float(np.exp(np.interp(np.log(rate_limit), np.log(rate[k - 1:k + 1]),
+                                                       np.log(w[k - 1:k + 1]))))
+    _, mag, phase = _mag_phase(loop, w)
+    return (float(np.interp(np.log(w_on), np.log(w), phase)), float(np.interp(np.log(w_on), np.log(w), mag)), w_on)

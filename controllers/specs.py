@@ -22,6 +22,8 @@ literature and marked as approximations where the source is a chart):
   approximate the published charts' Level boundaries: check them against
   ADS-33E-PRF before relying on a marginal result.
 * Minimum crossover: Level 1 boundary set by the DMO (CrsMnG2), Level 2 at 80 %.
+* Open-loop onset point: Duda (1997); the Nichols-chart boundary is approximated
+  by a line (see ``_olop_margin``), check it against the published chart.
 """
 from __future__ import annotations
 
@@ -98,12 +100,35 @@ class BandwidthSpec(Spec):
         return {"value": bw, "level": level, "margin": float(margin), "phase_delay": tau}
 
 
+def _olop_margin(design, stick_amplitude=1.0, rate_limit=1.0):
+    """Signed distance [dB] of the OLOP below an approximate Level 1 boundary.
+
+    Boundary: an approximation of Duda's (1997) OLOP Level 1/2 line on the
+    Nichols chart, taken as gain <= -2 dB at -180 deg rising linearly to
+    +10 dB at -120 deg (and unbounded above -120 deg, where rate limiting is
+    benign).  Stick amplitude and rate limit are in mixer units; defaults are
+    placeholders a user sets for the aircraft (see default_specs).
+    """
+    phase, gain, w_on = m.open_loop_onset_point(design.broken_loop(), design.mixer_response_pilot(),
+                                                stick_amplitude, rate_limit)
+    if not np.isfinite(w_on):
+        return 20.0   # the rate limit is never reached: far inside Level 1
+    ph = (phase + 180.0) % 360.0 - 180.0          # distance from -180 deg in (-180, 180]
+    limit = -2.0 + 12.0 * max(0.0, ph) / 60.0 if ph < 60.0 else np.inf
+    return float(limit - gain)
+
+
 def _max_real_pole(design):
     return float(np.max(design.closed_loop_poles().real))
 
 
-def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other"):
-    """The roll-axis spec set of Table 7.3 (see module docstring for sources)."""
+def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.05, olop_rate=1.0):
+    """The roll-axis spec set of Table 7.3 (see module docstring for sources).
+
+    ``olop_stick`` [stick units] and ``olop_rate`` [mixer units/s] set the
+    open-loop-onset-point check (full-stick sinusoid against the actuator rate
+    limit); the defaults are placeholders for the hand-written and coaxial plants.
+    """
     gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
     pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]
     if mte.startswith("target"):
@@ -135,6 +160,9 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other"):
         Spec("EigDpG1.lo", "damping ratio, 0.5-4 rad/s",
              lambda d: m.damping_in_band(d.closed_loop_poles(), 0.5, 4.0), "min", 0.35, 0.15,
              kind="soft", source="Table 7.3; ADS-33E-PRF"),
+        Spec("OlpOpG1", "open-loop onset point, pilot input (dB below the approximate boundary)",
+             lambda d: _olop_margin(d, olop_stick, olop_rate), "min", 0.0, -6.0, kind="soft",
+             units="dB", source="Duda 1997 OLOP criterion (approximate boundary)"),
         Spec("CrsMnG2", "minimum crossover frequency", lambda d: m.crossover_frequency(d.broken_loop()),
              "min", crossover_min, 0.8 * crossover_min, kind="soft", units="rad/s", source="generic"),
         Spec("CrsLnG1", "crossover frequency (minimised)", lambda d: m.crossover_frequency(d.broken_loop()),

@@ -77,6 +77,14 @@ def _sample_pair(data, out, inp, lo, hi, n_omega):
     return wn, np.exp(mag) * np.exp(1j * ph), c
 
 
+def _source_of(sources, out, inp):
+    """The first measured response that holds the (output, input) pair, or None."""
+    for src in sources:
+        if out in src.output_labels and inp in src.input_labels:
+            return src
+    return None
+
+
 def _default_range(data, out, inp, coherence_min):
     _, coh = data.element(out, inp)
     good = np.flatnonzero(coh >= coherence_min)
@@ -98,8 +106,9 @@ class FitResult:
     cost_table : DataFrame
         output, input, w_min, w_max [rad/s], J for each response fitted.
     J_ave : float
-        Mean cost over the responses.
-    data : MeasuredResponse
+        Mean cost over the responses (also the ``J_ave`` column of ``cost_table``).
+    data : MeasuredResponse or list of MeasuredResponse
+        The measured responses fitted.
     success : bool
     message : str
     """
@@ -108,7 +117,7 @@ class FitResult:
     parameters: pd.DataFrame
     cost_table: pd.DataFrame
     J_ave: float
-    data: MeasuredResponse
+    data: object
     success: bool
     message: str
     n_omega: int
@@ -143,9 +152,12 @@ class FitResult:
     def plot(self, fig=None):
         """Bode overlay of data and model with coherence for every fitted response."""
         from .plotting import bode_with_coherence
-        frd = self.structure.to_frd(self.data.omega, name="model")
+        sources = self.data if isinstance(self.data, list) else [self.data]
+        omega = np.unique(np.concatenate([src.omega for src in sources]))
+        frd = self.structure.to_frd(omega, name="model")
         pairs = [(p.output, p.input) for p in self.pairs]
-        return bode_with_coherence([(self.data, "data"), (frd, "model")], pairs, fig=fig)
+        return bode_with_coherence([(src, "data") for src in sources] + [(frd, "model")], pairs,
+                                   fig=fig)
 
     def summary(self) -> str:
         lines = [f"J_ave = {self.J_ave:.2f} over {len(self.cost_table)} responses"]
@@ -154,7 +166,7 @@ class FitResult:
         return "\n".join(lines)
 
 
-def fit(structure: ModelStructure, data: MeasuredResponse, *, pairs=None, frequency_ranges=None,
+def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=None,
         n_omega=20, coherence_min=0.6, stability_margin=0.0, require_stable=True,
         max_nfev=None) -> FitResult:
     """Minimise the CIFER cost of ``structure`` against measured responses.
@@ -164,8 +176,10 @@ def fit(structure: ModelStructure, data: MeasuredResponse, *, pairs=None, freque
     structure : ModelStructure
         Its free parameters are adjusted, fixed ones kept (staged fits:
         ``structure.fix([...])`` / ``.free([...])``, §6.4.3).
-    data : MeasuredResponse
-        Responses with coherence (e.g. from :func:`joint_input_output`).
+    responses : MeasuredResponse or sequence of MeasuredResponse
+        Responses with coherence (e.g. from :func:`joint_input_output`); with
+        several, each pair is taken from the first response that holds it
+        (grids may differ between responses).
     pairs : list of (output, input), optional
         Responses to fit. Default: every pair the structure and data share whose
         coherence reaches ``coherence_min`` on 5+ points and whose model response
@@ -188,28 +202,41 @@ def fit(structure: ModelStructure, data: MeasuredResponse, *, pairs=None, freque
     free = structure.free_names
     if not free:
         raise IdentificationError("the structure has no free parameters")
-    missing_o = [o for o in structure.outputs if o not in data.output_labels]
-    missing_i = [i for i in structure.inputs if i not in data.input_labels]
+    sources = [responses] if isinstance(responses, MeasuredResponse) else list(responses)
+    if not sources or not all(isinstance(src, MeasuredResponse) for src in sources):
+        raise IdentificationError("responses must be a MeasuredResponse or a non-empty sequence of them "
+                                  "(use frequency_response / joint_input_output)")
+    have_o = {o for src in sources for o in src.output_labels}
+    have_i = {i for src in sources for i in src.input_labels}
+    missing_o = [o for o in structure.outputs if o not in have_o]
+    missing_i = [i for i in structure.inputs if i not in have_i]
     if missing_o or missing_i:
         raise IdentificationError(f"data lacks the structure's outputs {missing_o} / inputs {missing_i}")
     if n_omega < 3:
         raise IdentificationError("n_omega must be at least 3")
-    h0 = structure.frequency_response(data.omega)
     if pairs is None:
         pairs = []
         for i, o in enumerate(structure.outputs):
             for j, u in enumerate(structure.inputs):
-                if np.all(h0[i, j] == 0):
-                    continue
-                if _default_range(data, o, u, coherence_min) is not None:
+                src = _source_of(sources, o, u)
+                if src is None or np.all(structure.frequency_response(src.omega)[i, j] == 0):
+                    continue   # no data, or structurally zero in the model
+                if _default_range(src, o, u, coherence_min) is not None:
                     pairs.append((o, u))
     if not pairs:
         raise IdentificationError(f"no response has coherence >= {coherence_min} on enough points")
     pair_data = []
     for o, u in pairs:
+        if o not in structure.outputs or u not in structure.inputs:
+            raise IdentificationError(f"pair {o}/{u} is not an (output, input) of the structure")
+        data = _source_of(sources, o, u)
+        if data is None:
+            raise IdentificationError(f"no measured response holds {o}/{u}")
         if isinstance(frequency_ranges, dict) and (o, u) in frequency_ranges:
             lo, hi = frequency_ranges[(o, u)]
-        elif isinstance(frequency_ranges, tuple):
+        elif frequency_ranges is not None and not isinstance(frequency_ranges, dict):
+            if len(frequency_ranges) != 2:
+                raise IdentificationError("frequency_ranges must be (w_lo, w_hi) or a dict of them")
             lo, hi = frequency_ranges
         else:
             rng = _default_range(data, o, u, coherence_min)
@@ -224,6 +251,14 @@ def fit(structure: ModelStructure, data: MeasuredResponse, *, pairs=None, freque
     x0 = np.maximum(x0, lower)
     has_dynamics = structure.poles().size > 0
 
+    # Stability (§6.4.1) by an exterior penalty on the rightmost eigenvalue. The
+    # penalty acts slightly inside the boundary (``buffer``) so the optimum of a
+    # fit pressed against it lands strictly stable, and its weight is raised
+    # until the re-check passes (a finite penalty alone trades a tiny violation
+    # for cost).
+    buffer = 1e-4 * max(1.0, abs(stability_margin))
+    weight = [1e3]
+
     def residuals(x, with_penalty=True):
         vals = dict(zip(free, x))
         parts = []
@@ -231,16 +266,27 @@ def fit(structure: ModelStructure, data: MeasuredResponse, *, pairs=None, freque
             hm = structure.frequency_response(p.omega, vals)[p.i, p.j]
             parts.append(_pair_residual(hm, p.h, p.coh))
         if with_penalty and has_dynamics:
-            worst = np.max(structure.poles(vals).real) + stability_margin
-            parts.append(np.array([1e3 * max(0.0, worst + 1e-9)]))
+            try:
+                worst = np.max(structure.poles(vals).real) + stability_margin + buffer
+            except IdentificationError:   # e.g. a singular M on the way: no state-space form
+                worst = 1.0
+            parts.append(np.array([weight[0] * max(0.0, worst)]))
         return np.concatenate(parts)
 
-    sol = least_squares(residuals, x0, bounds=(lower, np.full_like(x0, np.inf)), x_scale="jac",
-                        method="trf", max_nfev=max_nfev or 200 * (len(x0) + 1), xtol=1e-12, ftol=1e-12)
+    x = x0
+    for _ in range(4):
+        sol = least_squares(residuals, x, bounds=(lower, np.full_like(x0, np.inf)), x_scale="jac",
+                            method="trf", max_nfev=max_nfev or 200 * (len(x0) + 1), xtol=1e-12,
+                            ftol=1e-12)
+        x = sol.x
+        fitted = structure.with_values(dict(zip(free, x)))
+        if not has_dynamics or fitted.is_stable(margin=stability_margin):
+            break
+        weight[0] *= 100.0
     values = dict(zip(free, sol.x))
-    fitted = structure.with_values(values)
     if require_stable and has_dynamics and not fitted.is_stable(margin=stability_margin):
-        raise UnstableModelError(f"fitted model is unstable: poles {np.round(fitted.poles(), 4)}")
+        raise UnstableModelError(f"fitted model violates Re(p) < -{stability_margin} 1/s: "
+                                 f"poles {np.round(fitted.poles(), 4)}")
 
     costs = []
     for p in pair_data:
@@ -249,6 +295,8 @@ def fit(structure: ModelStructure, data: MeasuredResponse, *, pairs=None, freque
                       "w_max": p.omega[-1], "J": cifer_cost(hm, p.h, p.coh)})
     cost_table = pd.DataFrame(costs)
     j_ave = float(cost_table.J.mean())
+    cost_table["J_ave"] = j_ave
+    cost_table.attrs["J_ave"] = j_ave
 
     cr, ins = _cramer_rao_insensitivity(lambda x: residuals(x, with_penalty=False), sol.x)
     table = fitted.parameter_table()
@@ -259,7 +307,8 @@ def fit(structure: ModelStructure, data: MeasuredResponse, *, pairs=None, freque
         scale = abs(values[n]) if values[n] != 0 else np.nan
         table.loc[row, "cramer_rao_pct"] = 100.0 * cr[k] / scale
         table.loc[row, "insensitivity_pct"] = 100.0 * ins[k] / scale
-    return FitResult(fitted, table, cost_table, j_ave, data, bool(sol.success), sol.message,
+    data_out = sources[0] if len(sources) == 1 else sources
+    return FitResult(fitted, table, cost_table, j_ave, data_out, bool(sol.success), sol.message,
                      n_omega, pair_data)
 
 

@@ -161,7 +161,7 @@ def _window_spectra(x, ys, dt, t_win, overlap, w_lo, w_hi, n_lin):
 
 
 def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decade=25,
-                       n_windows=5, max_window=None, min_window=None, overlap=0.8,
+                       windows=None, n_windows=5, max_window=None, min_window=None, overlap=0.8,
                        cycles_per_window=2.0, input_name="u", output_names=None, name=None):
     """SISO/SIMO frequency response by chirp-z transform with composite windowing.
 
@@ -177,6 +177,9 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
         Frequency range of the result [rad/s].
     n_points : int, optional
         Number of log-spaced frequencies; default ``points_per_decade`` per decade.
+    windows : sequence of float, optional
+        Explicit window lengths [s] (each at least 32 samples and at most the
+        record). Overrides ``n_windows``, ``max_window`` and ``min_window``.
     n_windows : int
         Number of window lengths, geometrically spaced between ``min_window``
         and ``max_window`` [s] (defaults: half the record, and an eighth of that).
@@ -212,18 +215,26 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
     if not 0 <= overlap < 1:
         raise DataError("overlap must be in [0, 1)")
     record = t[-1] - t[0]
+    if windows is not None:
+        windows = np.sort(np.atleast_1d(np.asarray(windows, dtype=float)))[::-1]
+        if windows.size == 0 or not np.all(np.isfinite(windows)):
+            raise DataError("windows must be a non-empty sequence of finite lengths [s]")
+        if windows[-1] < 32 * dt:
+            raise DataError(f"window of {windows[-1]:.4g} s holds fewer than 32 samples (dt = {dt:.4g} s)")
+        max_window = windows[0]
     t_max = record / 2.0 if max_window is None else float(max_window)
     if t_max > record:
-        raise DataError("max_window is longer than the record")
+        raise DataError(f"the longest window ({t_max:.4g} s) is longer than the record ({record:.4g} s)")
     lowest = cycles_per_window * 2 * np.pi / t_max
     if w_min < lowest * (1 - 1e-9):
         need = cycles_per_window * 2 * np.pi / w_min * record / t_max
         raise DataError(f"record of {record:.4g} s is too short for w_min = {w_min:.4g} rad/s: "
                         f"the longest window ({t_max:.4g} s) resolves only down to "
                         f"{lowest:.4g} rad/s; a record of >= {need:.4g} s is needed")
-    t_min = t_max / 8.0 if min_window is None else float(min_window)
-    t_min = max(t_min, 32 * dt)
-    windows = np.geomspace(t_max, t_min, n_windows) if n_windows > 1 else np.array([t_max])
+    if windows is None:
+        t_min = t_max / 8.0 if min_window is None else float(min_window)
+        t_min = max(t_min, 32 * dt)
+        windows = np.geomspace(t_max, t_min, n_windows) if n_windows > 1 else np.array([t_max])
     if n_points is None:
         n_points = int(np.ceil(points_per_decade * np.log10(w_max / w_min))) + 1
     omega = np.geomspace(w_min, w_max, n_points)

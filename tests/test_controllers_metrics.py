@@ -86,3 +86,15 @@ def test_phase_unwrapping_prevents_wrong_w180():
     _, _, w180, _ = gain_phase_margins(L, DENSE)
     _, _, _, wg, _, _ = control.stability_margins(L)
     assert w180 == pytest.approx(wg, rel=1e-3)
+
+
+def test_open_loop_onset_point_of_a_first_order_actuator_path():
+    from controllers.metrics import open_loop_onset_point
+    # pilot -> mixer = 1 (flat): rate = w * A reaches R at w = R / A exactly
+    loop = control.tf([2.0], [1, 0])
+    w_on_expected = 4.0 / 0.5
+    phase, gain, w_on = open_loop_onset_point(loop, control.tf([1.0], [1.0]), 0.5, 4.0, DENSE)
+    assert w_on == pytest.approx(w_on_expected, rel=1e-4)
+    assert gain == pytest.approx(20 * np.log10(2.0 / w_on_expected), abs=1e-3)
+    assert phase == pytest.approx(-90.0, abs=1e-6)
+    assert np.isinf(open_loop_onset_point(loop, control.tf([1.0], [1.0]), 0.5, 1e6, DENSE)[2])
