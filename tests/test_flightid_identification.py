@@ -6,6 +6,7 @@ from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 from flightid import (IdentificationError, MLTauStructure, FGCStructure, GainDelayStructure,
                       SingularInputError, combine_responses, doublet, fit, frequency_response,
                       frequency_sweep, joint_input_output, reduce, verify)
+from studies.identification_demo import coaxial_6state_structure, truth_values
 from studies.synthetic_coaxial import coaxial_sweep_set, simulate_mltau
 
 OMEGA = 27.0
@@ -43,26 +44,11 @@ def test_first_order_model_with_delay_recovered_within_2_percent():
 
 
 def _coaxial_structure(initial):
-    def blocks(prefix):
-        p = prefix
-        return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
-                [0, f"{p}22", 0, 0, f"{p}25", 0],
-                [0, 0, f"{p}22", 0, 0, f"{p}25"],
-                [f"{p}41", 0, 0, f"{p}44", 0, 0],
-                [0, f"{p}52", 0, 0, f"{p}55", 0],
-                [0, 0, f"{p}52", 0, 0, f"{p}55"]]
-    return MLTauStructure(blocks("m"), blocks("l"), blocks("t"), inputs=COAXIAL_HOVER_6STATE.input_names,
-                          outputs=COAXIAL_HOVER_6STATE.output_names, initial=initial,
-                          omega=COAXIAL_HOVER_6STATE.omega)
+    return coaxial_6state_structure(initial, COAXIAL_HOVER_6STATE.omega)
 
 
 def _truth_values():
-    P = COAXIAL_HOVER_6STATE
-    vals = {}
-    for name, mat in (("m", P.M), ("l", P.L), ("t", P.tau)):
-        for i, j in [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)]:
-            vals[f"{name}{i}{j}"] = mat[i - 1, j - 1]
-    return vals
+    return truth_values(COAXIAL_HOVER_6STATE)
 
 
 @pytest.fixture(scope="module")
