@@ -331,7 +331,12 @@ def _cramer_rao_insensitivity(residual_fn, x):
     # see (near-zero eigenvalue) must give a huge bound, never a clipped 0
     # (inverting an ill-conditioned H directly can yield negative diagonals)
     eigval, eigvec = np.linalg.eigh(hess)
-    floor = max(eigval.max(), 1e-300) * 1e-14
-    cov_diag = np.sum(eigvec ** 2 / np.maximum(eigval, floor)[None, :], axis=1)
+    if not eigval.max() > 0:
+        # the cost does not depend on any free parameter (e.g. a gain fixed at 0
+        # multiplies them all): every bound is unbounded
+        return np.full(x.size, np.inf), ins
+    floor = eigval.max() * 1e-14
+    with np.errstate(over="ignore"):
+        cov_diag = np.sum(eigvec ** 2 / np.maximum(eigval, floor)[None, :], axis=1)
     cr = 2.0 * np.sqrt(cov_diag)
     return cr, ins

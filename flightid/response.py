@@ -226,6 +226,10 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
     if t_max > record:
         raise DataError(f"the longest window ({t_max:.4g} s) is longer than the record ({record:.4g} s)")
     lowest = cycles_per_window * 2 * np.pi / t_max
+    if w_min < lowest * (1 - 1e-9) and windows is not None:
+        raise DataError(f"the longest window ({t_max:.4g} s) resolves only down to {lowest:.4g} "
+                        f"rad/s, above w_min = {w_min:.4g} rad/s: add a window of >= "
+                        f"{cycles_per_window * 2 * np.pi / w_min:.4g} s")
     if w_min < lowest * (1 - 1e-9):
         need = cycles_per_window * 2 * np.pi / w_min * record / t_max
         raise DataError(f"record of {record:.4g} s is too short for w_min = {w_min:.4g} rad/s: "

@@ -13,7 +13,7 @@ __all__ = ["frequency_sweep", "shaped_noise", "doublet", "multistep_3211"]
 
 # CIFER / Tischler & Remple recommended exponential growth constants: with these
 # the instantaneous frequency reaches w_max exactly at the end of the sweep
-# (C2 (e^C1 - 1) = 1.0005) while spending most of the record at low frequency,
+# (C2 (e^C1 - 1) = 1.002) while spending most of the record at low frequency,
 # where longer periods need more time to be identified.
 _C1 = 4.0
 _C2 = 0.0187
@@ -78,13 +78,11 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
     t = np.arange(n_total) * dt
     tau = t - trim_start
     inside = (tau >= 0) & (tau <= duration)
-    k = _C2 * (np.exp(_C1 * np.clip(tau, 0, duration) / duration) - 1.0)
     # phase = integral of w(t): closed form of the exponential growth law
     ts = np.clip(tau, 0, duration)
     phase = w_min * ts + (w_max - w_min) * _C2 * (
         duration / _C1 * (np.exp(_C1 * ts / duration) - 1.0) - ts)
     u = np.where(inside, amplitude * np.sin(phase), 0.0)
-    w_inst = w_min + k * (w_max - w_min)
     # half-cosine fades so the sweep leaves and returns to trim smoothly
     fade_in = fade_cycles * 2 * np.pi / w_min
     fade_out = fade_cycles * 2 * np.pi / w_max
@@ -99,7 +97,6 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
             raise ValueError("noise_fraction must be >= 0")
         noise = shaped_noise(n_total, dt, w_min, w_max, rms=noise_fraction * amplitude, seed=seed)
         u = u + np.where(inside, noise * env, 0.0)
-    del w_inst
     return t, u
 
 

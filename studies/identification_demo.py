@@ -94,7 +94,7 @@ def run_demo(seed=0, out_dir="results/identification_demo", noise=0.02, verbose=
         fmt = lambda v: f"{v:.4g}"
         print("== Identification demo: 6-state coaxial hover inflow (truth = Eq. 5.3) ==")
         print(f"six sweeps, joint input-output, {len(result.cost_table)} responses, wall {elapsed:.1f} s")
-        print(result.cost_table.to_string(index=False, float_format=fmt))
+        print(result.cost_table.drop(columns="J_ave").to_string(index=False, float_format=fmt))
         print(f"J_ave = {result.J_ave:.2f}  (guideline: < 50 excellent, < 100 good)")
         print(params[["parameter", "value", "truth_eq_5_3", "error_pct", "cramer_rao_pct",
                       "insensitivity_pct"]].to_string(index=False, float_format=fmt))

@@ -157,6 +157,8 @@ def test_measured_response_is_a_python_control_frd():
     assert isinstance(r.plot(), Figure)
     with pytest.raises(DataError, match="longer than the record"):
         frequency_response(t, u, y, w_min=1.0, w_max=15.0, windows=[100.0])
+    with pytest.raises(DataError, match="add a window of >= 12.57 s"):
+        frequency_response(t, u, y, w_min=1.0, w_max=15.0, windows=[8.0])
     with pytest.raises(DataError, match="fewer than 32 samples"):
         frequency_response(t, u, y, w_min=1.0, w_max=15.0, windows=[30.0, 0.2])
 
@@ -184,3 +186,19 @@ def test_theil_inequality_closed_forms():
     assert theil_inequality(-m, m) == pytest.approx(1.0)
     assert theil_inequality(0 * m, m) == pytest.approx(1.0)
     assert theil_inequality(1.1 * m, m) == pytest.approx(0.1 / 2.1)
+
+
+def test_reduce_keeps_parameters_whose_removal_costs_too_much():
+    # thresholds at -1 % make every parameter a candidate: removing the gain g
+    # ruins the fit (cost rise >> 2) and removing the pole a leaves a pole at 0
+    # (not stable): both removals must be logged and refused
+    from flightid import reduce
+    t, u = frequency_sweep(0.5, 30.0, 60.0, 0.01, seed=2)
+    _, y, _ = sig.lsim(sig.lti([4.0], [1, 2.0]), u, t)
+    data = frequency_response(t, u, y, w_min=1.0, w_max=30, input_name="u", output_names=["y"])
+    s = FGCStructure([["-a"]], [["g"]], [[1.0]], inputs=["u"], outputs=["y"], initial={"a": 1.0, "g": 1.0})
+    red = reduce(s, data, insensitivity_max=-1.0, cramer_rao_max=-1.0)
+    assert red.removed == []
+    assert set(red.log.parameter) == {"a", "g"} and not red.log.accepted.any()
+    assert red.result.structure.values["a"] == pytest.approx(2.0, rel=0.01)
+    assert isinstance(red.to_pandas(), pd.DataFrame)
