@@ -142,8 +142,15 @@ def _problem(design, crossover_min, drb_min, settings, phase, phase_from):
     gdb = 10 * ca.log10(mag2 + 1e-12)
     ellipse = (ang / np.radians(settings.pm_deg)) ** 2 + (gdb / settings.gm_db) ** 2
     # unwrapped loop phase: Im C = -K_phi/w < 0, so atan2(Im C, Re C) is continuous
-    # in (-pi, 0) and adds smoothly to the (numerically unwrapped) phase of Q
-    phase_l = np.unwrap(np.angle(q)) + ca.atan2(ci, cr)
+    # in (-pi, 0) and adds smoothly to the (numerically unwrapped) phase of Q.
+    # np.unwrap anchors at the lowest frequency, where a free aircraft's
+    # near-cancelling pole/zero pairs at the origin put the phase of Q close to
+    # +-180 deg with an arbitrary branch; anchor instead at the crossover boundary,
+    # where any design meeting the phase margin has |phase Q| < 180 deg.
+    k_anchor = min(int(np.searchsorted(w, crossover_min)), w.size - 1)
+    phase_q = np.unwrap(np.angle(q))
+    phase_q -= 2 * np.pi * np.round((phase_q[k_anchor] - np.angle(q[k_anchor])) / (2 * np.pi))
+    phase_l = phase_q + ca.atan2(ci, cr)
     beyond = 1.0 / (1.0 + ca.exp((phase_l + np.pi) / np.radians(3.0)))   # ~1 where phase < -180 deg
     slack = opti.variable() if phase == 1 else 0
     if phase == 1:
@@ -183,7 +190,12 @@ def _gains_from(x, crossover_min, settings):
 def _verify(design, settings):
     """Re-check margins with python-control on the Padé state-space loop."""
     gm_exact, pm_exact, _, _ = m.gain_phase_margins(design.broken_loop())
-    gm, pm, _, _, _, _ = control.stability_margins(design.broken_loop_statespace(pade_order=4))
+    # python-control's 'poly' method forms the loop's polynomials, which overflow
+    # for the 40-60 state identified-inflow loops; its 'frd' method interpolates
+    # the (well-conditioned) state-space frequency response on a dense grid instead
+    loop = design.broken_loop_statespace(pade_order=4)
+    grid = control.frd(loop, np.logspace(-2, 3, 4000))
+    gm, pm, _, _, _, _ = control.stability_margins(grid, method="frd")
     gm_db = 20 * np.log10(gm) if np.isfinite(gm) and gm > 0 else np.inf
     if np.isfinite(gm_exact) and np.isfinite(gm_db) and abs(gm_db - gm_exact) > settings.verify_tolerance_db:
         raise VerificationError(f"gain margin: exact {gm_exact:.3f} dB vs python-control {gm_db:.3f} dB")

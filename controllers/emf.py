@@ -296,21 +296,40 @@ class EMFDesign:
         k = self.gains
         c = control.tf([k.K_p, k.K_phi, k.K_Iphi], [1.0, 0.0, 0.0])
         sensor = control.tf(*control.pade(self.sensor_delay, pade_order)) if self.sensor_delay > 0 else 1
-        return control.ss(c * self.actuator * sensor) * self.plant.to_statespace(pade_order) \
-            if False else control.series(self.plant.to_statespace(pade_order), control.ss(self.actuator),
-                                         control.ss(sensor), control.ss(c))
+        return control.series(self.plant.to_statespace(pade_order), control.ss(self.actuator),
+                              control.ss(sensor), control.ss(c))
 
-    def closed_loop_poles(self, pade_order=3, tol=1e-4):
-        """Poles of the minimal realisation of :meth:`closed_loop`.
+    def closed_loop_poles(self, pade_order=3, cancel_radius=0.02, match_tol=0.25):
+        """Poles of :meth:`closed_loop` [rad/s], less those the kinematics cancel.
 
-        The interconnect integrates p to get phi; when the bare-airframe p/delta
-        has a zero at the origin (a free hovering aircraft: lateral stick gives a
-        steady attitude, not a steady rate) that integrator cancels it, leaving an
-        uncontrollable mode at s = 0 which floating point places at +-1e-3.  The
-        minimal realisation (tolerance ``tol``) removes such cancelled modes; all
-        modes that the pilot or disturbance inputs excite are kept.
+        The interconnect integrates p to get phi. A hovering airframe's p/delta
+        has zeros at (or, after numerical linearisation, within ~1e-3 rad/s of)
+        the origin -- lateral stick gives an attitude change, not a steady rate --
+        and the integrator cancels them: the closed loop then has modes sitting on
+        those zeros that no input excites and no output sees, which floating
+        point may place at +1e-3. Such a mode is dropped when it lies within
+        ``cancel_radius`` [rad/s] of the origin (time constant > 50 s, far below
+        any handling-qualities band) *and* within ``match_tol`` (relative, or
+        1e-4 rad/s absolute) of a zero of the plant; every other pole, however
+        slow, is kept. A full eigen-decomposition is used rather than a
+        tolerance-based minimal realisation, which is ill-conditioned for the
+        30-50 state loops of the identified-inflow aircraft (it can turn a
+        +0.003 1/s cancelled mode into a spurious +1.8 1/s pole).
         """
-        return control.minreal(self.closed_loop(pade_order), tol=tol, verbose=False).poles()
+        poles = np.linalg.eigvals(self.closed_loop(pade_order).A)
+        plant_zeros = self.plant.to_statespace(pade_order).zeros()
+        slow_zeros = plant_zeros[np.abs(plant_zeros) < 2 * cancel_radius]
+        keep = np.ones(poles.size, bool)
+        used = np.zeros(slow_zeros.size, bool)
+        for i in np.argsort(np.abs(poles)):
+            if abs(poles[i]) >= cancel_radius or not slow_zeros.size:
+                continue
+            gap = np.abs(slow_zeros - poles[i]) - np.maximum(match_tol * np.abs(slow_zeros), 1e-4)
+            gap[used] = np.inf
+            j = int(np.argmin(gap))
+            if gap[j] <= 0:
+                keep[i], used[j] = False, True
+        return poles[keep]
 
     def stick_impulse(self, duration=6.0, dt=0.01, width=0.25, amplitude=1.0):
         """Response to a lateral-stick pulse: TimeResponseData with named signals."""

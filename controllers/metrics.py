@@ -170,10 +170,13 @@ def damping_in_band(poles, w_lo, w_hi):
     """Smallest damping ratio of the poles with natural frequency in [w_lo, w_hi] rad/s.
 
     Returns ``inf`` if no pole lies in the band. Unstable poles give negative damping.
+    The band edges are widened by a relative 1e-6 so that a pole placed on an
+    edge (the 4 rad/s command model against the 4-20 rad/s band) is counted
+    regardless of round-off in the eigenvalue solver.
     """
     poles = np.asarray(poles, dtype=complex)
     wn = np.abs(poles)
-    sel = (wn >= w_lo) & (wn <= w_hi) & (wn > 0)
+    sel = (wn >= w_lo * (1 - 1e-6)) & (wn <= w_hi * (1 + 1e-6)) & (wn > 0)
     if not sel.any():
         return float("inf")
     return float(np.min(-poles[sel].real / wn[sel]))

@@ -32,19 +32,24 @@ TABLE_7_2_FLAP = [(14.94, -4.736, "Regressive Flap"), (21.05, -4.601, "Regressiv
                   (35.39, -7.576, "Reactionless Flap"), (35.92, -7.663, "Coning Flap")]
 
 
+def _is_inflow(state_label):
+    # momentum-type models name their states lam*, identified ones inflow_x*
+    return "lam" in state_label or state_label.strip().startswith("inflow_")
+
+
 def _classify(row, omega):
     s = row.dominant_states
     if abs(row.imag) < 5.0:
         # non-oscillatory: body, inflow, or quasi-static flap-body (real) modes
         first = s.split(",")[0]
-        return "inflow" if "lam" in first else ("flap-body (real)" if "beta" in first else "body")
+        return "inflow" if _is_inflow(first) else ("flap-body (real)" if "beta" in first else "body")
     if "beta0" in s.split(",")[0]:
         return "coning flap"
     if "betad" in s.split(",")[0]:
         return "reactionless flap"
     if "beta1" in s or (row.frequency > 5 and ("p (" in s or "q (" in s)):
         return "regressive flap" if row.frequency < 1.0 * omega + 10 and row.frequency < 45 else "progressive flap"
-    if "lam" in s.split(",")[0]:
+    if _is_inflow(s.split(",")[0]):
         return "inflow"
     return "body"
 

@@ -6,6 +6,7 @@ from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default
                          evaluate_specs, fit_equivalent_delay, fit_inverse_plant, hover_roll_plant,
                          hq_window, optimize, second_order_actuator)
 from controllers.emf import FrequencyFunction
+from controllers.plants import DelayedLTI
 
 
 @pytest.fixture(scope="module")
@@ -76,3 +77,37 @@ def test_bad_inputs_are_rejected():
         EMFDesign(hover_roll_plant(), PIDGains(1, 1, 1), sensor_delay=-1)
     with pytest.raises(ValueError, match="order must be"):
         fit_inverse_plant(control.tf([1], [1, 1]), order="2/3")
+
+
+def _with_low_frequency_factor(factor):
+    base = hover_roll_plant()
+    plant = control.series(factor, base.system)
+    return EMFDesign(DelayedLTI(plant, base.delay), PIDGains(0.3, 0.1, 0.2), actuator=second_order_actuator())
+
+
+def test_closed_loop_poles_drop_the_mode_phi_integrator_cancels_but_keep_instability():
+    # a p/delta zero at +1e-3 rad/s (round-off of a hovering airframe's zero at the
+    # origin) is cancelled by phi = integral(p): the full eigenvalues contain it ...
+    design = _with_low_frequency_factor(control.tf([0.5, -0.5e-3], [1, 0.5]))
+    full = np.linalg.eigvals(design.closed_loop().A)
+    assert np.any(np.abs(full - 1e-3) < 1e-4)
+    # ... the reported poles do not, and everything else is kept
+    poles = design.closed_loop_poles()
+    assert poles.size == full.size - 1 and np.all(poles.real < 0)
+    # a genuinely unstable loop (an unstable plant pole the gains cannot hold) is reported
+    unstable = _with_low_frequency_factor(control.tf([0.005], [1, -0.005]))
+    assert np.max(unstable.closed_loop_poles().real) > 0.01
+
+
+def test_dmo_does_not_depend_on_the_phase_branch_at_the_lowest_grid_frequency():
+    # zeros at +0.02 and -0.01 rad/s below a lightly damped 0.23 rad/s mode (a free
+    # aircraft in hover): the phase at 0.05 rad/s is about -173 deg, so unwrapping from
+    # there puts the crossover region 360 deg low; the optimiser anchors the branch
+    # at the crossover boundary instead (before the fix this case was infeasible)
+    factor = control.tf(np.polymul([1, -0.02], [1, 0.01]), [1, 2 * 0.04 * 0.23, 0.23 ** 2])
+    design = _with_low_frequency_factor(factor)
+    w = DMOSettings().omega
+    q = design._g(1j * w) * design._sensor(1j * w)
+    assert np.degrees(np.angle(q[0])) < -170
+    result = optimize(design, 1.5, 0.9)
+    assert result.feasible, result.unmet

@@ -6,7 +6,7 @@ from scipy.integrate import solve_ivp
 from aircraft import coaxial_compound, uh60_single_rotor
 from aircraft.helicopter import (CouplingError, Helicopter, HelicopterSettings, TrimCondition, TrimError,
                                  coupling_numerator, linearize, mixing_matrix, modes, trim)
-from aircraft.inflow import ClimbingLowerRotor, DynamicClimb, IdentifiedInflow, PittPeters
+from aircraft.inflow import ClimbingLowerRotor, DynamicClimb, IdentifiedInflow, IsolatedRotors, PittPeters
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 
 FAST = HelicopterSettings(n_span=6, n_average=1)   # hover is axisymmetric: one azimuth is exact
@@ -120,3 +120,29 @@ def test_single_rotor_hover_trim_and_bad_inputs():
         TrimCondition(speed=-1.0)
     with pytest.raises(ValueError, match="pilot inputs"):
         linearize(tr, inputs="pilot")
+
+
+def test_forward_flight_trim_at_200_kt_with_lift_offset():
+    cfg = coaxial_compound(cruise=True)
+    collectives = []
+    for offset in (0.05, 0.15):
+        heli = Helicopter(cfg, IsolatedRotors(), HelicopterSettings(n_span=6, n_average=4))
+        tr = trim(heli, TrimCondition(speed=200 * 0.514444, rotor_aoa=np.radians(2.0),
+                                      lateral_cyclic_difference=offset))
+        assert tr.max_residual < 1e-8
+        assert tr.x[7] == pytest.approx(np.radians(2.0))          # pitch attitude = target rotor AoA
+        assert tr.u[6] > 0                                         # the pusher propeller pushes
+        collectives.append(tr.u[0])
+    # loading the advancing sides (more lift offset) lowers the collective needed
+    assert collectives[1] < collectives[0]
+    assert np.degrees(collectives[1]) < 15.0
+
+
+def test_hover_trim_with_12_state_flap_rate_inflow_model():
+    from aircraft.inflow.published import COAXIAL_HOVER_12STATE
+    inflow = IdentifiedInflow.from_published(COAXIAL_HOVER_12STATE)
+    assert inflow.uses_flap_rates
+    heli = Helicopter(coaxial_compound(), inflow, FAST)
+    tr = trim(heli)
+    assert tr.max_residual < 1e-8
+    assert np.all(np.isfinite(np.asarray(linearize(tr).A)))

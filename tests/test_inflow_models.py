@@ -7,6 +7,7 @@ from scipy.optimize import fsolve
 from aircraft.inflow import (ClimbingLowerRotor, DynamicClimb, IdentifiedInflow, InflowError,
                              IsolatedRotors, PittPeters, RotorOperatingPoint, mlbar_from_statespace,
                              momentum_inflow)
+from aircraft.inflow import inflow_names, published
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 
 OMEGA = 27.0
@@ -51,7 +52,7 @@ def test_dynamic_climb_steady_state_satisfies_coupled_eq_2_7():
     def eqs(v):
         lu, ll = v
         return [lu * (lu + 0.86 * ll) - 0.0053 / 2, ll * (ll + 1.13 * lu) - 0.0043 / 2]
-    lu, ll = fsolve(eqs, [0.04, 0.04], xtol=1e-14)
+    lu, ll = fsolve(eqs, [0.04, 0.04], xtol=1e-12)
     assert x[0] == pytest.approx(lu, rel=1e-8) and x[3] == pytest.approx(ll, rel=1e-8)
     total = DynamicClimb().inflow(x, loads, ops)
     assert total[3] > total[0]                 # lower rotor sees more inflow
@@ -112,3 +113,30 @@ def test_inflow_models_reject_bad_inputs():
     with pytest.raises(InflowError, match="unstable"):
         IdentifiedInflow(unstable)
     assert IsolatedRotors().rotors == ("U", "L")
+
+
+@pytest.mark.parametrize("model", published.ALL_MODELS, ids=lambda m: m.name)
+def test_every_published_model_is_usable_as_identified_inflow(model):
+    inflow = IdentifiedInflow.from_published(model)
+    assert inflow.output_names == inflow_names(model.rotors)
+    assert np.all(np.linalg.eigvals(inflow.system.A).real < 0)
+    if hasattr(model, "F"):
+        # DC gain of the F/G/C model equals -C F^-1 G (columns reordered by name), computed here
+        g = np.asarray(model.G)
+        cols = [list(model.inputs).index(n) for n in inflow.input_names]
+        expected = -model.C @ np.linalg.solve(model.F, g[:, cols])
+        # same linear algebra, different path (control.dcgain): round-off only
+        np.testing.assert_allclose(control.dcgain(inflow.system), expected, rtol=1e-8, atol=1e-12)
+        assert inflow.uses_flap_rates == ("beta1s_dot_U" in model.inputs)
+    else:
+        # Padé approximants have unit DC gain: the steady state is inv(Lbar); minreal tol 1e-9
+        np.testing.assert_allclose(control.dcgain(inflow.system), np.linalg.inv(model.L), rtol=1e-6, atol=1e-9)
+
+
+def test_published_model_without_trim_thrust_needs_trim_loads():
+    import dataclasses
+    bare = dataclasses.replace(published.COAXIAL_FORWARD_12STATE, condition={"flight": "forward", "mu": 0.54})
+    with pytest.raises(InflowError, match="no trim thrust"):
+        IdentifiedInflow.from_published(bare)
+    model = IdentifiedInflow.from_published(bare, loads_ref=np.array([0.0073, 0, 0, 0.0065, 0, 0]))
+    np.testing.assert_allclose(model.loads_ref, [0.0073, 0, 0, 0.0065, 0, 0])

@@ -36,7 +36,9 @@ class TrimError(RuntimeError):
 @dataclass(frozen=True)
 class TrimCondition:
     """speed [m/s] (level flight), rotor_aoa [rad] (forward flight, shaft angle to the
-    flight path, positive nose up), lateral_cyclic_difference [rad] (lift offset)."""
+    flight path, positive nose up), lateral_cyclic_difference [rad]: the
+    differential cyclic held fixed at trim to set the lift offset (§7.2; the same
+    own-frame theta1c on both rotors, see ``_controls``)."""
 
     speed: float = 0.0
     rotor_aoa: float = np.radians(2.0)
@@ -76,9 +78,13 @@ class TrimResult:
 def _controls(heli, pilot, condition):
     if heli.config.is_coaxial:
         u = mixing_matrix() @ pilot
-        d = condition.lateral_cyclic_difference / 2
-        u[2] -= d
-        u[5] += d
+        # differential (lift-offset) cyclic: the same own-frame theta1c on both
+        # rotors. Each rotor then loads the same side of its own azimuth, which in
+        # body axes are opposite sides, so the roll moments cancel (lift offset).
+        # Equal/opposite own-frame theta1c is the lateral stick, equal theta1s the
+        # longitudinal stick (mixing.py), so this input is orthogonal to both.
+        u[2] += condition.lateral_cyclic_difference / 2
+        u[5] += condition.lateral_cyclic_difference / 2
         return u
     return np.asarray(pilot, float)
 
@@ -86,11 +92,13 @@ def _controls(heli, pilot, condition):
 def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30) -> TrimResult:
     """Trim ``heli`` at ``condition``; raise :class:`TrimError` naming the residuals if it fails."""
     cfg = heli.config
+    # an inflow model frozen at an earlier trim (ClimbingLowerRotor holds its
+    # climb there) must be released first, or this trim inherits that condition
+    heli.inflow.release_trim()
     nin = len(heli.inflow.state_names)
     nrot = len(heli.rotors)
     forward = condition.speed > 0
     coax = cfg.is_coaxial
-    n_pilot = 4 if coax else 4
     # initial guess: momentum inflow, collective from thrust, flap coning from thrust
     x0 = np.zeros(heli.n_states)
     w_share = cfg.weight / nrot

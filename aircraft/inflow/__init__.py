@@ -10,13 +10,13 @@
 """
 from .base import (InflowModel, RotorOperatingPoint, flap_rate_names, inflow_names,
                    load_names, rotor_suffix)
-from .pitt_peters import (InflowError, IsolatedRotors, PittPeters, mlbar_from_statespace,
+from .pitt_peters import (KR_ANALYTICAL, InflowError, IsolatedRotors, PittPeters, mlbar_from_statespace,
                           momentum_inflow, pitt_peters_matrices)
 from .coaxial import ClimbingLowerRotor, DynamicClimb
-from .identified import IdentifiedInflow
+from .identified import IdentifiedInflow, mltau_statespace
 from . import published
 
 __all__ = ["InflowModel", "RotorOperatingPoint", "flap_rate_names", "inflow_names",
-           "load_names", "rotor_suffix", "InflowError", "IsolatedRotors", "PittPeters",
+           "load_names", "rotor_suffix", "KR_ANALYTICAL", "InflowError", "IsolatedRotors", "PittPeters",
            "mlbar_from_statespace", "momentum_inflow", "pitt_peters_matrices",
-           "ClimbingLowerRotor", "DynamicClimb", "IdentifiedInflow", "published"]
+           "ClimbingLowerRotor", "DynamicClimb", "IdentifiedInflow", "mltau_statespace", "published"]

@@ -69,8 +69,14 @@ class RotorOperatingPoint:
     mu : float
         In-plane advance ratio (free-stream component in the disk plane / Omega R), >= 0.
     mu_z : float
-        Free-stream component along the shaft, positive *up through the disk*
-        (i.e. climb), divided by Omega R.  The induced inflow is not included.
+        Axial (climb) ratio: the rotor hub's velocity along the shaft, positive
+        *up* (climb), divided by Omega R.  In a climb the free stream then flows
+        *down* through the disk, adding to the induced inflow: the total flow
+        through the disk is ``lambda_tot = mu_z + lam0`` (positive down, as
+        lambda).  The induced inflow is not included in ``mu_z``.  (The
+        helicopter sets ``mu_z = -w_hub / (Omega R)`` with body z down.  Note that
+        a disk tilted *back* in forward flight has the free stream flowing *up*
+        through it, i.e. a *negative* ``mu_z`` here.)
     """
 
     omega: float
@@ -143,6 +149,9 @@ class InflowModel(ABC):
     def inflow(self, x: np.ndarray, loads: np.ndarray, ops: tuple) -> np.ndarray:
         """Total induced inflow harmonics ``[lam0, lam1s, lam1c]`` per rotor.
 
+        ``loads`` may be None: the models of this package have no load-to-inflow
+        feedthrough (which would make an algebraic loop with the blade loads).
+
         This is what a blade-element model uses: it includes interference
         (for example the climb the upper rotor imposes on the lower one), so
         the blade sees ``lambda(r, psi) = lam0 + lam1s r sin psi + lam1c r cos psi``.
@@ -154,6 +163,11 @@ class InflowModel(ABC):
         Models with quantities frozen at trim (e.g. the climbing lower rotor's
         climb, §2.2.2.3) store them here; the default does nothing.
         """
+
+    def release_trim(self) -> None:
+        """Undo :meth:`set_trim` (call before trimming again at another condition).
+
+        The default does nothing."""
 
     def linear(self, loads: np.ndarray, ops: tuple):
         """Perturbation model about the equilibrium with ``loads``: a named

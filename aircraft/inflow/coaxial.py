@@ -19,9 +19,24 @@ __all__ = ["ClimbingLowerRotor", "DynamicClimb"]
 class ClimbingLowerRotor(PittPeters):
     """Isolated Pitt-Peters rotors, the lower one in a climb of the upper trimmed inflow.
 
-    Until :meth:`set_trim` is called (the aircraft does it after trimming) the
-    climb follows the upper rotor's current lam0, so that solving for trim gives
-    the consistent equilibrium; afterwards it is frozen (static interference).
+    The lower rotor's climb ``mu_c^L = climb_fraction * lam0^U(trim)`` enters its
+    mass flow, hence [L]^-1 (Eqs. 2.4-2.5), and its total downwash (Eq. 2.6:
+    :meth:`inflow` returns ``lam0^L + mu_c^L``). Until :meth:`set_trim` is called
+    (the aircraft does it after trimming) the climb follows the upper rotor's
+    current lam0, so that solving for trim gives the consistent equilibrium;
+    afterwards it is frozen (static interference: a perturbation of the upper
+    rotor's inflow does not change the lower rotor's climb). :meth:`linear`
+    always freezes it at the equilibrium it linearises about.
+    :meth:`release_trim` unfreezes it (call it before trimming again at another
+    condition).
+
+    Parameters
+    ----------
+    kr : float
+        Wake-distortion parameter K_R (Eq. 2.29).
+    climb_fraction : float
+        Fraction of the upper rotor's trimmed lam0 taken as the lower rotor's climb
+        (1 in §2.2.2.3).
     """
 
     def __init__(self, kr=0.0, climb_fraction=1.0):
@@ -36,6 +51,21 @@ class ClimbingLowerRotor(PittPeters):
     def set_trim(self, x, loads, ops):
         self.frozen_climb = self.climb_fraction * float(np.asarray(x)[0])
 
+    def release_trim(self):
+        """Let the climb follow the upper rotor's lam0 again (before a new trim)."""
+        self.frozen_climb = None
+
+    def linear(self, loads, ops):
+        """Perturbation model with the climb frozen at this equilibrium (static interference)."""
+        saved = self.frozen_climb
+        try:
+            self.frozen_climb = None
+            x0 = PittPeters.steady_state(self, loads, ops)
+            self.frozen_climb = self.climb_fraction * float(x0[0])
+            return super().linear(loads, ops)
+        finally:
+            self.frozen_climb = saved
+
     def steady_state(self, loads, ops):
         frozen, self.frozen_climb = self.frozen_climb, None
         try:
@@ -47,13 +77,28 @@ class ClimbingLowerRotor(PittPeters):
 class DynamicClimb(PittPeters):
     """Coaxial "Dynamic Climb" inflow (Eq. 2.7), K_R wake distortion optional.
 
+    Each rotor is a nonlinear Pitt-Peters rotor in a climb equal to a fraction of
+    the other rotor's *current* lam0 state; the climb changes its mass flow and
+    so its [L]^-1 (Eqs. 2.4-2.5) at every instant, coupling the two lam0 states
+    dynamically (the harmonics stay uncoupled). The downwash a blade sees is the
+    state plus the climb (Eqs. 2.8-2.9), returned by :meth:`inflow`.
+
     Parameters
     ----------
     upper_fraction, lower_fraction : float
         mu_c^U = upper_fraction * lam0^L, mu_c^L = lower_fraction * lam0^U
-        (0.86 and 1.13 in hover, Ref. 38 via Eq. 2.7).
+        (0.86 and 1.13 in hover, Ref. 38 via Eq. 2.7; Ref. 38 uses other
+        fractions at other speeds).
     kr : float
-        Wake-distortion parameter (Eq. 2.29).
+        Wake-distortion parameter K_R (Eq. 2.29), same on both rotors. Default 0
+        (no flap-rate inputs); the dissertation's Dynamic Climb model uses the
+        single-rotor analytical value, ``kr=KR_ANALYTICAL`` (1.5, §2.2.2.5).
+
+    Notes
+    -----
+    The climb adds to the flow through the disk: in hover ``lam0^U (lam0^U +
+    0.86 lam0^L) = C_T^U / 2`` and ``lam0^L (lam0^L + 1.13 lam0^U) = C_T^L / 2``
+    (see :mod:`aircraft.inflow.pitt_peters` on the sign of mu_c in Eqs. 2.4-2.5).
     """
 
     def __init__(self, upper_fraction=0.86, lower_fraction=1.13, kr=0.0):

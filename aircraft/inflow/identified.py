@@ -1,11 +1,22 @@
 """Identified (perturbation) inflow models inside the aircraft: :class:`IdentifiedInflow`.
 
-An identified model is a perturbation about the trim it was identified at:
-``x' = A x + B (u - u_ref)``, ``lambda = lambda_ref + C x + D (u - u_ref)`` with
-u the loads (and flap rates for F/G/C models with wake distortion), in seconds.
-Its reference inflow travels with it. For printed models that give no trim
-inflow, :meth:`IdentifiedInflow.from_published` takes the reference inflow from a
+An identified model is a perturbation about the trim it was identified at::
+
+    x' = A x + B (u - u_ref)                     [1/s]
+    lambda = lambda_ref + C x                    (D = 0: no algebraic loop with the loads)
+
+with u the loads ``(C_T, C_L, C_M)`` per rotor (followed by the flap rates
+``beta1s_dot, beta1c_dot`` [rad/s] per rotor for models with wake distortion).
+The reference trim (loads ``u_ref`` and total inflow ``lambda_ref``) travels with the
+model. For printed models that give no trim inflow,
+:meth:`IdentifiedInflow.from_published` takes the reference inflow from a
 momentum-based model's steady state at the model's trim loads (documented there).
+
+Three ways in: a ready :class:`control.StateSpace` with canonical names, the
+``M, Lbar, tau`` form of Eqs. 2.11-2.16/2.30 (:meth:`IdentifiedInflow.from_matrices`,
+delays by Padé, then a minimal realisation), or the ``F, G, C`` near/far-wake form of
+Eqs. 6.2-6.5 (:meth:`IdentifiedInflow.from_fgc`). This module does not depend on
+:mod:`flightid`: identified models come in as arrays or python-control objects.
 """
 from __future__ import annotations
 
@@ -15,7 +26,96 @@ import numpy as np
 from .base import InflowModel, RotorOperatingPoint, flap_rate_names, inflow_names, load_names
 from .pitt_peters import InflowError
 
-__all__ = ["IdentifiedInflow"]
+__all__ = ["IdentifiedInflow", "mltau_statespace"]
+
+
+def _sysname(name):
+    """python-control forbids '.' in system names ("Eq. 5.3" -> "Eq- 5-3")."""
+    return str(name).replace(".", "-")
+
+
+def _pade_ss(tau, order):
+    """Padé approximant of exp(-tau s) [tau in s] as a SISO StateSpace."""
+    num, den = control.pade(tau, order)
+    return control.ss(control.tf(num, den))
+
+
+def mltau_statespace(M, L, tau=None, *, omega, time="azimuth", pade_order=2,
+                     inputs=None, outputs=None, name="M/Lbar/tau", delays="rowwise"):
+    """Realise ``M lam' + Lbar lam = u(t - tau)`` (row-wise delays, Eq. 2.16) in seconds.
+
+    Parameters
+    ----------
+    M, L : (n, n) array_like
+        Apparent-mass and ``Lbar = [L]^-1`` matrices (dimensionless loads and inflow).
+    tau : (n, n) array_like, optional
+        Delays [s]. Following Eq. 2.16, output ``i`` responds to input ``j`` delayed
+        by ``tau[i, j]``: the transfer matrix is ``H_ij(s) exp(-tau_ij s)`` with
+        ``H(s) = (M s + Lbar)^-1``.
+    omega : float
+        Rotor speed [rad/s].
+    time : {"azimuth", "seconds"}
+        Whether ``M`` multiplies ``d/dpsi`` (dimensionless, e.g. Eq. 5.3) or ``d/dt``
+        (``M/Omega`` [s], e.g. Tables 4.1-4.2 and Eqs. 4.7-4.8).
+    pade_order : int
+        Order of the Padé approximant of each non-zero delay.
+    delays : {"rowwise", "input"}
+        ``"rowwise"`` (default): Eq. 2.16, one delay per (output, input) pair as
+        above. ``"input"``: Eq. 2.15, input ``j`` delayed by ``tau[j, j]`` before the
+        whole system, ``H(s) diag(exp(-tau_jj s))`` (``tau`` must then be
+        diagonal). The two agree when ``H`` is diagonal (hover single rotor).
+
+    Returns
+    -------
+    control.StateSpace
+        Minimal realisation, time in seconds, strictly proper (D = 0).
+    """
+    M = np.atleast_2d(np.asarray(M, float))
+    L = np.atleast_2d(np.asarray(L, float))
+    n = M.shape[0]
+    if M.shape != (n, n) or L.shape != (n, n):
+        raise InflowError(f"M and Lbar must be square and alike, got {M.shape} and {L.shape}")
+    tau = np.zeros((n, n)) if tau is None else np.asarray(tau, float)
+    if tau.shape != (n, n) or np.any(tau < 0) or not np.all(np.isfinite(tau)):
+        raise InflowError(f"tau must be a ({n}, {n}) array of non-negative delays [s]")
+    if time not in ("azimuth", "seconds"):
+        raise InflowError(f"time must be 'azimuth' or 'seconds', got {time!r}")
+    if not omega > 0:
+        raise InflowError(f"omega must be positive [rad/s], got {omega!r}")
+    if abs(np.linalg.det(M)) < 1e-300:
+        raise InflowError("M is singular: not a first-order inflow model")
+    m_s = M / omega if time == "azimuth" else M      # seconds: (M/Omega) d/dt
+    minv = np.linalg.inv(m_s)
+    h = control.ss(-minv @ L, minv, np.eye(n), np.zeros((n, n)))
+    inputs = inputs or [f"u{j}" for j in range(n)]
+    outputs = outputs or [f"y{i}" for i in range(n)]
+    if delays not in ("rowwise", "input"):
+        raise InflowError(f"delays must be 'rowwise' (Eq. 2.16) or 'input' (Eq. 2.15), got {delays!r}")
+    if delays == "input" and np.any(tau - np.diag(np.diag(tau))):
+        raise InflowError("delays='input' (Eq. 2.15) needs a diagonal tau; use 'rowwise' (Eq. 2.16)")
+    if not np.any(tau > 0):
+        sys = h
+    elif delays == "input":
+        pades = [_pade_ss(tau[j, j], pade_order) if tau[j, j] > 0 else control.ss([], [], [], [[1.0]])
+                 for j in range(n)]
+        sys = control.minreal(control.series(control.append(*pades), h), tol=1e-9, verbose=False)
+    else:
+        # column by column: H[:, j], then each output through its own delay
+        cols = []
+        for j in range(n):
+            hj = control.ss(h.A, h.B[:, [j]], h.C, h.D[:, [j]])
+            delays = [_pade_ss(tau[i, j], pade_order) if tau[i, j] > 0 else control.ss([], [], [], [[1.0]])
+                      for i in range(n)]
+            cols.append(control.series(hj, control.append(*delays)))
+        sys = cols[0]
+        for c in cols[1:]:
+            sys = control.append(sys, c)
+        # sum the per-column outputs: y = sum_j y^(j)
+        summer = np.hstack([np.eye(n)] * n)
+        sys = control.ss(sys.A, sys.B, summer @ sys.C, summer @ sys.D)
+        sys = control.minreal(sys, tol=1e-9, verbose=False)
+    return control.ss(sys.A, sys.B, sys.C, np.zeros((n, n)), inputs=inputs, outputs=outputs,
+                      states=[f"inflow_x{k}" for k in range(sys.nstates)], name=_sysname(name))
 
 
 class IdentifiedInflow(InflowModel):
@@ -24,18 +124,28 @@ class IdentifiedInflow(InflowModel):
     Parameters
     ----------
     system : control.StateSpace
-        Inputs named with the canonical load names (optionally followed by
-        flap-rate names), outputs the inflow names, time in seconds.
-    rotors : tuple of str
-    loads_ref : array_like
-        Loads (C_T, C_L, C_M per rotor) at the identification trim.
-    inflow_ref : array_like
-        Inflow harmonics at that trim (what the blade sees, interference included).
+        Inputs named with the canonical load names (optionally followed by the
+        flap-rate names ``beta1s_dot_U, beta1c_dot_U, …`` [rad/s]), outputs the
+        inflow names, time in seconds, strictly proper, stable.
+    rotors : tuple of str, optional
+        Rotor names, ``("U", "L")`` (coaxial) or ``("",)`` (single rotor). Default:
+        inferred from the output names (``("U", "L")`` if they are not recognised,
+        which then raises a naming error).
+    loads_ref : array_like, optional
+        Loads (C_T, C_L, C_M per rotor) at the identification trim (default zeros).
+    inflow_ref : array_like, optional
+        Total inflow harmonics at that trim (what the blade sees, interference
+        included); :meth:`inflow` returns ``inflow_ref + C x``.
+    name : str
     """
 
-    def __init__(self, system, rotors=("U", "L"), loads_ref=None, inflow_ref=None, name="identified"):
-        self.rotors = tuple(rotors)
+    def __init__(self, system, rotors=None, loads_ref=None, inflow_ref=None, name="identified"):
         sys = control.ss(system)
+        if rotors is None:
+            # infer from the output names: ("",) for lam0, lam1s, lam1c; ("U", "L") for the coaxial
+            outs = list(sys.output_labels)
+            rotors = next((r for r in (("",), ("U", "L")) if outs == inflow_names(r)), ("U", "L"))
+        self.rotors = tuple(rotors)
         loads = load_names(self.rotors)
         rates = flap_rate_names(self.rotors)
         inputs = list(sys.input_labels)
@@ -51,8 +161,12 @@ class IdentifiedInflow(InflowModel):
             # a direct load -> inflow feedthrough would close an algebraic loop with
             # the blade-element loads; identified inflow models are strictly proper
             raise InflowError("identified inflow model has a feedthrough (D != 0): not supported")
-        if sys.nstates and np.max(np.linalg.eigvals(sys.A).real) >= 0:
-            raise InflowError("the identified inflow model is unstable: refusing to use it in the aircraft")
+        if sys.nstates == 0:
+            raise InflowError("identified inflow model has no states")
+        if np.max(np.linalg.eigvals(sys.A).real) >= 0:
+            raise InflowError(f"the identified inflow model {name!r} is unstable "
+                              f"(max Re(pole) = {np.max(np.linalg.eigvals(sys.A).real):.3g} 1/s): "
+                              "refusing to use it in the aircraft")
         self.system = sys
         self.name = name
         n = len(self.rotors)
@@ -66,80 +180,138 @@ class IdentifiedInflow(InflowModel):
         return list(self.system.state_labels)
 
     def _u(self, loads, rates):
-        du = np.asarray(loads, float) - self.loads_ref
-        if du.shape != self.loads_ref.shape:
-            raise InflowError(f"loads must have {self.loads_ref.size} entries")
+        loads = np.asarray(loads, float)
+        if loads.shape != self.loads_ref.shape:
+            raise InflowError(f"loads must have {self.loads_ref.size} entries {self.load_names}, "
+                              f"got shape {loads.shape}")
+        du = loads - self.loads_ref
         if self.uses_flap_rates:
             r = np.zeros(2 * len(self.rotors)) if rates is None else np.asarray(rates, float)
+            if r.shape != (2 * len(self.rotors),):
+                raise InflowError(f"rates must have {2 * len(self.rotors)} entries {self.rate_names}")
             du = np.concatenate([du, r])
         return du
 
+    def _x(self, x):
+        x = np.asarray(x, float)
+        if x.shape != (self.n_states,):
+            raise InflowError(f"x must have {self.n_states} entries {self.state_names}, got shape {x.shape}")
+        return x
+
     def derivatives(self, x, loads, ops, rates=None):
-        return self.system.A @ np.asarray(x, float) + self.system.B @ self._u(loads, rates)
+        return self.system.A @ self._x(x) + self.system.B @ self._u(loads, rates)
 
     def inflow(self, x, loads, ops):
-        return self.inflow_ref + self.system.C @ np.asarray(x, float)   # D == 0 (checked)
+        """``inflow_ref + C x`` (``loads`` unused: D == 0, checked; may be None)."""
+        return self.inflow_ref + self.system.C @ self._x(x)
 
     def steady_state(self, loads, ops):
+        """States at equilibrium with ``loads`` (DC gain; flap rates zero)."""
         return -np.linalg.solve(self.system.A, self.system.B @ self._u(loads, None))
 
     def linear(self, loads, ops):
         sys = control.ss(self.system.A, self.system.B, self.system.C, self.system.D,
                          inputs=self.input_names, outputs=self.output_names, states=self.state_names,
-                         name=self.name)
+                         name=_sysname(self.name))
         x0 = self.steady_state(loads, ops)
-        sys.trim_states, sys.trim_inputs = x0, np.concatenate([loads, np.zeros(len(self.rate_names))])
+        sys.trim_states = x0
+        sys.trim_inputs = np.concatenate([np.asarray(loads, float), np.zeros(len(self.rate_names))])
         sys.trim_outputs = self.inflow(x0, loads, ops)
         return sys
 
     # -- constructors -----------------------------------------------------------
     @classmethod
-    def from_matrices(cls, M, L, tau=None, *, omega, rotors=("U", "L"), loads_ref=None, inflow_ref=None,
-                      pade_order=None, name="identified M/Lbar/tau"):
-        """From the M/Lbar/tau form (azimuth time with ``omega`` [rad/s], delays [s],
-        row-wise per Eq. 2.16), delays absorbed by Padé into a minimal realisation."""
-        from flightid import MLTauStructure
-        M, L = np.asarray(M, float), np.asarray(L, float)
-        tau = np.zeros_like(M) if tau is None else np.asarray(tau, float)
-        values = {}
-
-        def pattern(mat, p):
-            rows = []
-            for i in range(mat.shape[0]):
-                row = []
-                for j in range(mat.shape[1]):
-                    if mat[i, j] != 0:
-                        values[f"{p}{i}_{j}"] = mat[i, j]
-                        row.append(f"{p}{i}_{j}")
-                    else:
-                        row.append(0.0)
-                rows.append(row)
-            return rows
-        structure = MLTauStructure(pattern(M, "m"), pattern(L, "l"), pattern(tau, "t"),
-                                   inputs=load_names(rotors), outputs=inflow_names(rotors),
-                                   initial=values, omega=omega)
-        return cls(structure.to_statespace(pade_order=pade_order), rotors, loads_ref, inflow_ref, name)
+    def from_matrices(cls, M, L, tau=None, *, omega, rotors=("U", "L"), time="azimuth", loads_ref=None,
+                      inflow_ref=None, pade_order=2, name="identified M/Lbar/tau", delays="rowwise"):
+        """From the ``M, Lbar, tau`` form (see :func:`mltau_statespace`), delays by Padé."""
+        rotors = tuple(rotors)
+        sys = mltau_statespace(M, L, tau, omega=omega, time=time, pade_order=pade_order,
+                               inputs=load_names(rotors), outputs=inflow_names(rotors), name=name,
+                               delays=delays)
+        return cls(sys, rotors, loads_ref, inflow_ref, name)
 
     @classmethod
-    def from_published(cls, model, reference=None, pade_order=None):
+    def from_fgc(cls, F, G, C=None, *, rotors=("U", "L"), input_order=None, loads_ref=None,
+                 inflow_ref=None, name="identified F/G/C"):
+        """From the near/far-wake form ``x' = F x + G u``, ``lambda = C x`` (Eqs. 6.2-6.5).
+
+        Parameters
+        ----------
+        F : (n, n) array_like  [1/s]
+        G : (n, m) array_like
+        C : (3 * n_rotors, n) array_like, optional
+            Default: ``lambda = lambda_N + lambda_F`` with states ordered
+            ``(lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF)`` per rotor (Eq. 6.2).
+        input_order : list of str, optional
+            Names of G's columns, in any order (e.g. Eq. 6.2's
+            ``CT_U, CL_U, beta1s_dot_U, CM_U, beta1c_dot_U, …``); they are
+            permuted to the canonical order. Default: the canonical load names.
+        """
+        rotors = tuple(rotors)
+        F, G = np.asarray(F, float), np.asarray(G, float)
+        n = F.shape[0]
+        if F.shape != (n, n) or G.shape[0] != n:
+            raise InflowError(f"F must be square and G have as many rows, got {F.shape}, {G.shape}")
+        if C is None:
+            if n != 6 * len(rotors):
+                raise InflowError("default C (near + far) needs 6 states per rotor")
+            C = np.zeros((3 * len(rotors), n))
+            for i in range(3 * len(rotors)):
+                C[i, 2 * i] = C[i, 2 * i + 1] = 1.0
+            states = [f"{h}{w}{'_' + r if r else ''}" for r in rotors
+                      for h in ("lam0", "lam1s", "lam1c") for w in ("N", "F")]
+        else:
+            C = np.asarray(C, float)
+            states = [f"inflow_x{k}" for k in range(n)]
+        order = list(input_order) if input_order is not None else load_names(rotors)
+        if len(order) != G.shape[1]:
+            raise InflowError(f"input_order has {len(order)} names for {G.shape[1]} columns of G")
+        canonical = load_names(rotors) + (flap_rate_names(rotors) if len(order) > 3 * len(rotors) else [])
+        if sorted(order) != sorted(canonical):
+            raise InflowError(f"input_order {order} must be a permutation of {canonical}")
+        Gc = G[:, [order.index(c) for c in canonical]]
+        sys = control.ss(F, Gc, C, np.zeros((C.shape[0], Gc.shape[1])), inputs=canonical,
+                         outputs=inflow_names(rotors), states=states, name=_sysname(name))
+        return cls(sys, rotors, loads_ref, inflow_ref, name)
+
+    @classmethod
+    def from_published(cls, model, reference=None, pade_order=2, loads_ref=None):
         """A printed model of :mod:`aircraft.inflow.published` as an aircraft inflow model.
 
         The dissertation prints no trim inflow for its identified models; the
-        reference inflow is the steady state of ``reference`` (default:
-        :class:`~aircraft.inflow.coaxial.DynamicClimb` for coaxial models) at the
-        model's trim thrusts with zero hub moments, in hover at ``model.omega``.
+        reference inflow is the steady state of ``reference`` at the model's trim
+        thrusts with zero hub moments, at the model's ``omega`` and advance ratio
+        ``condition["mu"]`` (default 0). Default ``reference``:
+        :class:`~aircraft.inflow.coaxial.DynamicClimb` for coaxial hover models,
+        :class:`~aircraft.inflow.pitt_peters.IsolatedRotors` for coaxial forward
+        flight (§2.2.2.2), :class:`~aircraft.inflow.pitt_peters.PittPeters` for a
+        single rotor. ``loads_ref`` (C_T, C_L, C_M per rotor) overrides the
+        model's trim loads.
         """
         from .coaxial import DynamicClimb
-        from .pitt_peters import PittPeters
+        from .pitt_peters import IsolatedRotors, PittPeters
         rotors = tuple(model.rotors)
-        cts = [model.condition.get(f"CT_{r}" if r else "CT") for r in rotors]
-        if any(c is None for c in cts):
-            raise InflowError(f"{model.name}: no trim thrust in its condition {model.condition}")
-        loads_ref = np.concatenate([[c, 0.0, 0.0] for c in cts])
-        reference = reference or (DynamicClimb() if len(rotors) == 2 else PittPeters(rotors))
-        ops = tuple(RotorOperatingPoint(omega=model.omega) for _ in rotors)
+        if loads_ref is None:
+            cts = [model.condition.get(f"CT_{r}" if r else "CT") for r in rotors]
+            if any(c is None for c in cts):
+                raise InflowError(f"{model.name}: no trim thrust in its condition {model.condition}; "
+                                  "give loads_ref")
+            loads_ref = np.concatenate([[c, 0.0, 0.0] for c in cts])
+        loads_ref = np.asarray(loads_ref, float)
+        if loads_ref.shape != (3 * len(rotors),):
+            raise InflowError(f"loads_ref must have {3 * len(rotors)} entries, got shape {loads_ref.shape}")
+        mu = float(model.condition.get("mu", 0.0))
+        if reference is None:
+            if len(rotors) == 1:
+                reference = PittPeters(rotors)
+            else:
+                reference = DynamicClimb() if mu == 0.0 else IsolatedRotors()
+        ops = tuple(RotorOperatingPoint(omega=model.omega, mu=mu) for _ in rotors)
         x = reference.steady_state(loads_ref, ops)
         inflow_ref = reference.inflow(x, loads_ref, ops)
+        if hasattr(model, "F"):
+            return cls.from_fgc(model.F, model.G, model.C, rotors=rotors, input_order=model.input_order,
+                                loads_ref=loads_ref, inflow_ref=inflow_ref, name=model.name)
         return cls.from_matrices(model.M, model.L, model.tau, omega=model.omega, rotors=rotors,
-                                 loads_ref=loads_ref, inflow_ref=inflow_ref, pade_order=pade_order,
-                                 name=model.name)
+                                 time=model.time, loads_ref=loads_ref, inflow_ref=inflow_ref,
+                                 pade_order=pade_order, name=model.name)
