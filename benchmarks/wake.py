@@ -1,14 +1,17 @@
 """Free-vortex wake benchmark (run: .venv/bin/python benchmarks/wake.py).
 
-Prints the Biot-Savart pair-interaction rate of the compiled kernel and of the plain
-numpy version (same inputs, same run) and their ratio, the wall time of one coaxial
-revolution at the default resolution, and the projected wall time of the six-sweep
-coaxial hover identification set on 2 cores.
+Prints, from one run: the Biot-Savart pair-interaction rate of the compiled kernel
+in double and single precision and of the plain numpy version (same inputs) with
+their ratios; the wall time of one coaxial revolution at the default resolution
+(10 deg steps, 4 + 1 revolutions of wake, 10 elements) measured on all cores and
+on one (the sweep workers run one kernel thread each); and the projected wall time
+of the six-sweep coaxial hover identification set on 2 cores.
 """
 import math
 import os
 import time
 
+import numba
 import numpy as np
 
 from aircraft.configs import coaxial_compound
@@ -17,50 +20,61 @@ from aircraft.wake import (FreeVortexWake, WakeSettings, segment_velocity,
 
 
 def pair_rates(m=1500, n=1800, seed=0):
+    """Pairs/s of the compiled kernel (double, single) and of numpy, same inputs."""
     rng = np.random.default_rng(seed)
     tg = rng.normal(size=(m, 3))
     a = rng.normal(size=(n, 3))
     b = a + 0.1 * rng.normal(size=(n, 3))
     g = rng.normal(size=n)
     rc = np.full(n, 0.05)
-    segment_velocity(tg[:10], a, b, g, rc)          # compile / load cache
-    reps = 5
-    t0 = time.perf_counter()
-    for _ in range(reps):
-        segment_velocity(tg, a, b, g, rc)
-    fast = reps * m * n / (time.perf_counter() - t0)
-    mm = 200
+    rates = {}
+    for precision in ("double", "single"):
+        segment_velocity(tg[:10], a, b, g, rc, precision)        # compile / load cache
+        reps = 10
+        t0 = time.perf_counter()
+        for _ in range(reps):
+            segment_velocity(tg, a, b, g, rc, precision)
+        rates[precision] = reps * m * n / (time.perf_counter() - t0)
+    mm = 300
     t0 = time.perf_counter()
     segment_velocity_numpy(tg[:mm], a, b, g, rc)
-    slow = mm * n / (time.perf_counter() - t0)
-    return fast, slow
+    rates["numpy"] = mm * n / (time.perf_counter() - t0)
+    return rates
 
 
-def main():
-    print(f"cores visible: {os.cpu_count()} (machine shared; timings inflated by other load)")
-    fast, slow = pair_rates()
-    print(f"Biot-Savart pairs/s: compiled {fast:.3e}, numpy {slow:.3e}, ratio {fast / slow:.1f}x")
-    s = WakeSettings()      # default: 10 deg steps, 4 + 1 (buffer) revs, 10 elements
+def revolution_time(threads):
+    numba.set_num_threads(threads)
+    s = WakeSettings()
     w = FreeVortexWake(coaxial_compound(), s)
     w.controls.update(theta0_U=0.16, theta0_L=0.17)
     w.march(s.steps_per_rev)                                   # warm up
     t0 = time.perf_counter()
     w.march(s.steps_per_rev)
-    t_rev = time.perf_counter() - t0
-    print(f"coaxial revolution, 10 deg, {s.wake_revolutions:g}+{s.buffer_revolutions:g} revs of "
-          f"wake, {s.n_elements} elements: {t_rev:.2f} s "
-          f"({t_rev / s.steps_per_rev * 1e3:.1f} ms/step)")
+    return time.perf_counter() - t0, s, w
+
+
+def main():
+    cores = os.cpu_count() or 2
+    print(f"cores visible: {cores} (shared machine: timings include other load)")
+    r = pair_rates()
+    print(f"Biot-Savart pairs/s: compiled double {r['double']:.3e}, compiled single "
+          f"{r['single']:.3e}, numpy {r['numpy']:.3e}; ratio to numpy: double "
+          f"{r['double'] / r['numpy']:.1f}x, single {r['single'] / r['numpy']:.1f}x (target >= 50x)")
+    t_all, s, w = revolution_time(numba.config.NUMBA_NUM_THREADS)
+    t_one, _, _ = revolution_time(1)
+    print(f"coaxial revolution, {math.degrees(s.azimuth_step):g} deg steps, "
+          f"{s.wake_revolutions:g}+{s.buffer_revolutions:g} revs of wake, {s.n_elements} elements, "
+          f"{s.kernel_precision} kernel: {t_all:.2f} s on {numba.config.NUMBA_NUM_THREADS} threads, "
+          f"{t_one:.2f} s on 1 ({t_one / s.steps_per_rev * 1e3:.1f} ms/step)")
     rev_s = 2 * math.pi / w.omega
-    sweep_s = 60.0                                  # one sweep record [s] (+ doublets small)
-    n_sweeps = 6
-    runs_per_core = math.ceil(n_sweeps / 2)
-    trim_revs = 20
-    # each worker process runs with one core
-    t_proj = runs_per_core * sweep_s / rev_s * t_rev * (os.cpu_count() or 2) / 1 + trim_revs * t_rev
-    print(f"projected six-sweep coaxial hover set (6 x {sweep_s:.0f} s records = "
-          f"{sweep_s / rev_s:.0f} revs each, 2 workers, one core each, + {trim_revs}-rev trim): "
-          f"{t_proj / 60:.1f} min (target < 10 min); dominated by the Biot-Savart evaluation "
-          "of the free markers (2 per step, predictor + corrector)")
+    sweep_s = 60.0                                  # one sweep record [s]; doublets are short
+    n_sweeps, workers, trim_revs = 6, 2, 20
+    revs = sweep_s / rev_s
+    # run_sweeps: a pool of 2 processes, one kernel thread each, after one trim
+    t_proj = math.ceil(n_sweeps / workers) * revs * t_one + trim_revs * t_all
+    print(f"projected six-sweep coaxial hover set (6 x {sweep_s:.0f} s records = {revs:.0f} revs "
+          f"each, {workers} workers x 1 thread, + {trim_revs}-rev trim): {t_proj / 60:.1f} min "
+          f"(target < 10 min)")
 
 
 if __name__ == "__main__":

@@ -52,3 +52,20 @@ def test_core_growth_and_input_validation():
         segment_velocity(np.zeros((3, 2)), np.zeros((1, 3)), np.ones((1, 3)), 1.0, 0.1)
     with pytest.raises(ValueError, match="core radii must be >= 0"):
         segment_velocity(np.zeros((1, 3)), np.zeros((1, 3)), np.ones((1, 3)), 1.0, -0.1)
+
+
+def test_single_precision_kernel_agrees_with_double():
+    # wake-like scales: targets and segments tens of metres from the origin, cores of
+    # centimetres; float32 carries ~7 digits, so 1e-5 relative bounds its round-off
+    rng = np.random.default_rng(2)
+    tg = 20.0 + 5.0 * rng.normal(size=(200, 3))
+    a = 20.0 + 5.0 * rng.normal(size=(300, 3))
+    b = a + 0.5 * rng.normal(size=(300, 3))
+    g = rng.normal(size=300)
+    rc = np.full(300, 0.05)
+    v64 = segment_velocity(tg, a, b, g, rc)
+    v32 = segment_velocity(tg, a, b, g, rc, precision="single")
+    assert v32.dtype == np.float64
+    np.testing.assert_allclose(v32, v64, rtol=0, atol=1e-5 * np.abs(v64).max())
+    with pytest.raises(ValueError, match="precision must be"):
+        segment_velocity(tg, a, b, g, rc, precision="half")

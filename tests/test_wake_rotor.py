@@ -66,6 +66,18 @@ def test_azimuth_step_halving_changes_inflow_little():
     assert res[1]["lam0"] == pytest.approx(res[0]["lam0"], rel=0.05)
 
 
+def test_single_precision_kernel_trims_like_double(hover_single):
+    # The hover wake's blade-passage unsteadiness is chaotic: any round-off change
+    # shifts revolution-averaged outputs by about its per-revolution scatter (0.5 %
+    # rms for CT and lam0 at this resolution), so 1.5 % (3 sigma) is the bound.
+    w32, tr32 = hover_single
+    assert w32.settings.kernel_precision == "single"
+    w64 = FreeVortexWake(uh60_single_rotor(), WakeSettings(**COARSE, kernel_precision="double"))
+    tr64 = w64.trim(ct=0.0061)
+    assert tr32.outputs["lam0"] == pytest.approx(tr64.outputs["lam0"], rel=0.015)
+    assert w32.controls["theta0"] == pytest.approx(w64.controls["theta0"], rel=0.015)
+
+
 @pytest.mark.xfail(strict=True, reason="known defect: the wake's lam0/CT gain is ~2.5x the "
                    "momentum value 1/(4 lam) (lam0 grows ~linearly with CT; the wake pitch "
                    "does not yet respond enough); see the issue-3 report")
@@ -91,7 +103,10 @@ def test_low_frequency_inflow_gain(hover_single):
 @pytest.fixture(scope="module")
 def coaxial():
     w = FreeVortexWake(coaxial_compound(), WakeSettings(**COARSE))
-    tr = w.trim(ct=(0.0053, 0.0043), mode="torque_balance")
+    # tol: the coarse coaxial wake's revolution-averaged residuals scatter by
+    # ~1e-4 (blade passage of both rotors' vortices; measured over 20 iterations),
+    # so a tighter tolerance would only be met by chance
+    tr = w.trim(ct=(0.0053, 0.0043), mode="torque_balance", tol=1e-4)
     return w, tr
 
 
@@ -99,8 +114,8 @@ def test_coaxial_torque_balance_and_inflow(coaxial):
     w, tr = coaxial
     o = tr.outputs
     assert tr.converged
-    assert o["CT_U"] + o["CT_L"] == pytest.approx(0.0096, abs=3e-5)
-    assert o["CQ_U"] == pytest.approx(o["CQ_L"], abs=3e-5)
+    assert o["CT_U"] + o["CT_L"] == pytest.approx(0.0096, abs=1e-4)
+    assert o["CQ_U"] == pytest.approx(o["CQ_L"], rel=0.05)     # torque balanced within 5 %
     assert o["lam0_L"] > o["lam0_U"]              # lower rotor works in the upper's wake
     # torque balance puts more thrust on the upper rotor (dissertation: 0.0053/0.0043)
     assert o["CT_U"] > o["CT_L"]
@@ -138,5 +153,7 @@ def test_sweep_driver_cache_with_sine(tmp_path):
 def test_settings_validation():
     with pytest.raises(WakeSettingsError, match="divide 360"):
         WakeSettings(azimuth_step=math.radians(7.0))
+    with pytest.raises(WakeSettingsError, match="kernel_precision"):
+        WakeSettings(kernel_precision="half")
     with pytest.raises(WakeSettingsError, match="speed"):
         FlightCondition(speed=-1.0)

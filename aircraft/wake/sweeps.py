@@ -92,7 +92,10 @@ def _key(payload: dict) -> str:
 
 def _worker(args):
     config, settings, flight, snap, trim_result, spec, points, path = args
+    import numba
     from .wake import FreeVortexWake
+    # one kernel thread per worker process: the pool already fills the cores
+    numba.set_num_threads(1)
     wake = FreeVortexWake(config, settings, flight)
     wake.restore(snap)
     wake._trim_state = snap
