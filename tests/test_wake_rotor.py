@@ -78,9 +78,10 @@ def test_single_precision_kernel_trims_like_double(hover_single):
     assert w32.controls["theta0"] == pytest.approx(w64.controls["theta0"], rel=0.015)
 
 
-@pytest.mark.xfail(strict=True, reason="known defect: the wake's lam0/CT gain is ~2.5x the "
-                   "momentum value 1/(4 lam) (lam0 grows ~linearly with CT; the wake pitch "
-                   "does not yet respond enough); see the issue-3 report")
+@pytest.mark.xfail(strict=True, reason="known defect: at this resolution the wake's lam0/CT "
+                   "gain is ~2.5x the momentum value 1/(4 lam); it depends on the free-wake "
+                   "length (2-3 revs: 2.2-2.6x, 4 revs: 0.2-0.35x with +-0.02 rad steps), "
+                   "i.e. the far wake, not the blades, sets it; see the issue-3 note")
 def test_low_frequency_inflow_gain(hover_single):
     # Quasi-steady gain d lam0 / d CT of momentum theory is 1/(4 lambda).  A
     # collective step is compared with an unperturbed run from the same trimmed
