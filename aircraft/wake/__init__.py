@@ -11,7 +11,8 @@ Architecture
     wake.py         FreeVortexWake: lifting-line blades (linear lift, stall limit,
                     Kutta-Joukowski), rigid ~30 deg near wake, one free tip vortex per
                     blade marched with a PC2B-type predictor-corrector, frozen
-                    far-wake buffer, rigid or free (spring-hinge) flapping
+                    far-wake buffer and a prescribed helical far-wake continuation,
+                    rigid or free (spring-hinge) flapping
     outputs.py      blade-sum loads and inflow harmonics (Eqs. 2.22, 2.25, 2.26)
     trim.py         trim_wake (thrust / coaxial torque balance, zero hub moments),
                     run_wake (prescribed controls -> pandas.DataFrame)

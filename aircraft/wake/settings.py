@@ -56,6 +56,13 @@ class WakeSettings:
         faster with ~1e-6 relative round-off, orders of magnitude below the
         model's own error (trimmed hover inflow agrees with double to < 0.5 %,
         tests); use "double" for kernel-level verification.
+    far_wake_revolutions : float
+        Length of the prescribed helical continuation of every tip vortex past
+        the buffer [rev] (0: the wake ends at the buffer). It keeps the end of
+        the free wake from rolling up and makes the trimmed inflow independent
+        of ``wake_revolutions`` (tests); a source only, no markers.
+    far_wake_step : float
+        Azimuthal chord of the far-wake helix segments [rad] (default 30 deg).
     """
 
     azimuth_step: float = math.radians(10.0)
@@ -71,6 +78,8 @@ class WakeSettings:
     initial_wake_kappa: float = 1.15
     tip_vortex_strength: str = "thrust_equivalent"
     kernel_precision: str = "single"
+    far_wake_revolutions: float = 10.0
+    far_wake_step: float = math.radians(30.0)
 
     def __post_init__(self):
         if not 0.0 < self.azimuth_step <= math.radians(30.0):
@@ -93,6 +102,9 @@ class WakeSettings:
         if self.kernel_precision not in ("single", "double"):
             raise WakeSettingsError("kernel_precision must be 'single' or 'double', "
                                     f"got {self.kernel_precision!r}")
+        if self.far_wake_revolutions < 0 or not 0 < self.far_wake_step <= math.pi / 2:
+            raise WakeSettingsError("far_wake_revolutions must be >= 0 and far_wake_step in "
+                                    "(0, 90 deg] [rad]")
         if self.core_delta < 0:
             raise WakeSettingsError("core_delta must be >= 0")
 

@@ -263,7 +263,56 @@ class FreeVortexWake:
             rc = core_radius(mid, self.omega, s.core_radius * rot.chord, s.core_delta,
                              s.kinematic_viscosity)
             RC.append(np.tile(rc, rot.nb))
+            if s.far_wake_revolutions > 0:
+                fa, fb, fg, frc = self._far_wake(ir, X[ir], rc[-1])
+                A.append(fa)
+                B.append(fb)
+                G.append(fg)
+                RC.append(frc)
         return np.concatenate(A), np.concatenate(B), np.concatenate(G), np.concatenate(RC)
+
+    def _far_wake(self, ir, X, rc_end):
+        """Prescribed helical continuation of each tip vortex past the buffer.
+
+        Without it the wake simply ends: the last free turns then see roughly half
+        the induced velocity of an infinite wake, slow down, bunch up and roll up
+        into a ring (the tip vortex radius was measured growing past 1.1 R after
+        3-4 revolutions), and the rotor inflow and its low-frequency gain depend on
+        the wake length. The continuation is a source only (no markers are
+        convected): per blade, an ideal helix about the rotor axis that drifts with
+        the free stream plus the rotor's mean induced velocity (momentum theory's
+        far-wake vortex descent), with the mean radius of the last free revolution
+        and the strength of the last shed turn, ``far_wake_revolutions`` long in
+        ``far_wake_step`` chords (coarse is enough that far from the disk). It
+        starts at the mean height of the wake's end, joined to each blade's
+        actual last marker by one segment.
+        """
+        s = self.settings
+        rot = self.rotors[ir]
+        nrev = s.steps_per_rev
+        nf = s.n_free
+        last = X[:, max(nf + 1 - nrev, 1):nf + 1, :]          # last free revolution
+        radius = np.hypot(last[..., 0] - rot.hub[0], last[..., 1] - rot.hub[1]).mean()
+        radius = float(np.clip(radius, 0.6 * rot.R, 1.0 * rot.R))
+        drift = self.v_inf - np.array([0.0, 0.0, self._lam0[ir] * self.omega * rot.R])
+        n_seg = max(1, int(round(s.far_wake_revolutions * 2 * np.pi / s.far_wake_step)))
+        zeta = self._ages[-1] + np.arange(n_seg + 1) * s.far_wake_step   # wake age [rad]
+        t_rel = (zeta - zeta[0]) / self.omega
+        z0 = X[:, -1, 2].mean()
+        psib = self._psi_blades(rot, self.psi)
+        g_far = self.G_tip[ir][:, -nrev:].mean(axis=1)             # strength of the last turn
+        A, B, G = [], [], []
+        for b in range(rot.nb):
+            ang = psib[b] - zeta
+            pts = np.stack([rot.hub[0] - radius * np.cos(ang) + drift[0] * t_rel,
+                            rot.hub[1] - rot.d * radius * np.sin(ang) + drift[1] * t_rel,
+                            z0 + drift[2] * t_rel], axis=1)
+            pts = np.vstack([X[b, -1][None, :], pts])
+            A.append(pts[:-1])
+            B.append(pts[1:])
+            G.append(np.full(n_seg + 1, rot.d * g_far[b]))
+        rc = np.full(rot.nb * (n_seg + 1), rc_end)
+        return np.concatenate(A), np.concatenate(B), np.concatenate(G), rc
 
     def _attached_segments(self):
         """Bound and near-wake segments of all blades with the map to panel circulation.
