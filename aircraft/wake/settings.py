@@ -26,7 +26,20 @@ class WakeSettings:
         keep the convection velocity they had when they left the free wake (as
         OpenFAST/OLAF does), so the wake end neither rolls up nor is cut abruptly.
     near_wake_extent : float
-        Azimuthal extent of the rigid trailed near wake [rad] (default 30 deg).
+        Azimuthal extent of the rigid trailed near wake [rad] (default 60 deg);
+        the free tip vortex starts at its end. The young tip vortex sits within a
+        chord or two of the blade's bound and trailed vorticity; marched freely
+        from 30 deg it made the trimmed hover inflow depend on the resolution
+        (kappa 1.05-1.30), the lam0/C_T gain 0.3-1.5x 1/(4 lambda_h) and trims fail
+        at 10 deg steps. Rigid to 60 deg, kappa is 1.14-1.16 and the gain
+        1.03-1.28x at 10-15 deg steps and 2-4 revolutions of wake (issue-3 note).
+    near_wake_contraction : bool
+        Contract the rigid near wake by Landgrebe's law. Without it the tip
+        vortex leaves the near wake at r = R and the hover wake contracts only to
+        ~0.86 R; with it to ~0.78 R as measured by Landgrebe, but the blade-sum
+        inflow drops to kappa ~0.92-0.99 (the contracted tip vortex induces
+        upwash over the blade tips) with the gain still 0.87-1.06x. Off by default
+        because the inflow, not the geometry, is what the identification uses.
     n_elements : int
         Blade elements (lifting-line panels) per blade.
     core_radius : float
@@ -68,7 +81,8 @@ class WakeSettings:
     azimuth_step: float = math.radians(10.0)
     wake_revolutions: float = 4.0
     buffer_revolutions: float = 1.0
-    near_wake_extent: float = math.radians(30.0)
+    near_wake_extent: float = math.radians(60.0)
+    near_wake_contraction: bool = False
     n_elements: int = 10
     core_radius: float = 0.10
     near_wake_core: float = 0.25

@@ -188,10 +188,29 @@ class FreeVortexWake:
         # the near wake drifts with the free stream and half the rotor's mean
         # induced velocity (the tip vortex's initial descent is about that)
         drift = self.v_inf - np.array([0.0, 0.0, 0.5 * self._lam0[ir] * self.omega * rot.R])
+        contraction = self._near_wake_contraction(ir, ages)
         for m, age in enumerate(ages):
-            pts[:, :, m, :] = (self._blade_points(rot, self._psi_blades(rot, psi) - age, beta, rot.r_edge)
-                               + drift * age / self.omega)
+            p = self._blade_points(rot, self._psi_blades(rot, psi) - age, beta, rot.r_edge)
+            p[..., :2] = rot.hub[:2] + contraction[m] * (p[..., :2] - rot.hub[:2])
+            pts[:, :, m, :] = p + drift * age / self.omega
         return pts
+
+    def _near_wake_contraction(self, ir, ages):
+        """Radial scale of the rigid near wake versus age [-].
+
+        1 (no contraction) unless ``settings.near_wake_contraction``: then
+        Landgrebe's hover law r = 0.78 + 0.22 exp(-(0.145 + 27 C_T) zeta)
+        (Leishman, Principles, Sec. 10.7), blended out with advance ratio (none
+        above mu = 0.1, where the wake is swept back before it can contract).
+        """
+        if not self.settings.near_wake_contraction:
+            return np.ones_like(ages)
+        rot = self.rotors[ir]
+        mu = math.hypot(self.v_inf[0], self.v_inf[1]) / (self.omega * rot.R)
+        weight = max(0.0, 1.0 - mu / 0.1)
+        ct = max(self._last[rot.name]["CT"] if self._last is not None else self._ct0[ir], 0.0)
+        landgrebe = 0.78 + 0.22 * np.exp(-(0.145 + 27.0 * ct) * ages)
+        return 1.0 - weight * (1.0 - landgrebe)
 
     # ---------------------------------------------------------- initial wake
     def _initialise(self, cts):
@@ -201,6 +220,7 @@ class FreeVortexWake:
         self.psi = 0.0
         self.step_count = 0
         self._lam0 = np.array([s.initial_wake_kappa * math.sqrt(ct / 2.0) for ct in cts])
+        self._ct0 = list(cts)
         self.X, self.Xold, self.Vold, self.Vbuf, self.G_tip = [], [], [], [], []
         self.gamma, self.beta, self.beta_dot = [], [], []
         ages = s.near_wake_extent + np.arange(nk) * s.azimuth_step
