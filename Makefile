@@ -17,8 +17,9 @@ $(STAMP): pyproject.toml
 study: $(STAMP)
 	MPLBACKEND=Agg $(PY) -m studies.hover_control_comparison
 
+# one numba thread per pytest worker: two workers already fill the two CI cores
 test: $(STAMP)
-	MPLBACKEND=Agg $(PY) -m pytest -n 2 -q
+	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(PY) -m pytest -n 2 -q
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(PY) benchmarks/identification.py

@@ -13,6 +13,8 @@ Architecture
                     blade marched with a PC2B-type predictor-corrector, frozen
                     far-wake buffer and a prescribed helical far-wake continuation,
                     rigid or free (spring-hinge) flapping
+    far_wake.py     prescribed helical far-wake continuation (sources only)
+    threads.py      single-threaded BLAS while numba kernels run
     outputs.py      blade-sum loads and inflow harmonics (Eqs. 2.22, 2.25, 2.26)
     trim.py         trim_wake (thrust / coaxial torque balance, zero hub moments),
                     run_wake (prescribed controls -> pandas.DataFrame)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, asdict, field
@@ -90,12 +91,15 @@ def _key(payload: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 
+def _init_pool_worker():
+    # one kernel thread per worker process: the pool already fills the cores
+    import numba
+    numba.set_num_threads(1)
+
+
 def _worker(args):
     config, settings, flight, snap, trim_result, spec, points, path = args
-    import numba
     from .wake import FreeVortexWake
-    # one kernel thread per worker process: the pool already fills the cores
-    numba.set_num_threads(1)
     wake = FreeVortexWake(config, settings, flight)
     wake.restore(snap)
     wake._trim_state = snap
@@ -183,7 +187,10 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
             results[name] = df
             bar.update()
     else:
-        with ProcessPoolExecutor(max_workers=n_jobs) as pool:
+        # "spawn", not fork: numba's OpenMP threading layer aborts a forked child
+        # ("fork() called from a process already using GNU OpenMP")
+        with ProcessPoolExecutor(max_workers=n_jobs, mp_context=multiprocessing.get_context("spawn"),
+                                 initializer=_init_pool_worker) as pool:
             for name, df in pool.map(_worker, jobs):
                 results[name] = df
                 bar.update()

@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from ..inflow.base import rotor_suffix
-from .wake import single_threaded_blas
+from .threads import single_threaded_blas
 
 __all__ = ["WakeTrim", "WakeTrimError", "trim_wake", "run_wake"]
 
@@ -33,6 +33,9 @@ class WakeTrim:
     residual : float
         Largest absolute load error [-] at the last iteration.
     history : list of dict
+    fd_jacobians : int
+        Finite-difference Jacobians measured (each ``revs_per_iter`` revolutions per
+        unknown on top of the iterations); 0 with the blade-element estimate.
     """
 
     controls: dict
@@ -41,6 +44,7 @@ class WakeTrim:
     iterations: int
     residual: float
     history: list = field(default_factory=list)
+    fd_jacobians: int = 0
 
     def to_pandas(self):
         """History of the iterations as a DataFrame."""
@@ -120,8 +124,29 @@ def _jacobian_estimate(wake, ct, mode, cyclic):
     return J
 
 
+def _fd_jacobian(wake, names, ct, mode, cyclic, res0, start, n_steps, h):
+    """One-sided finite-difference Jacobian d(residual)/d(controls) [1/rad] of the wake.
+
+    ``res0`` is the residual of the ``n_steps`` march just made from the state
+    ``start`` (a :meth:`~FreeVortexWake.snapshot`).  Each column repeats that march
+    from ``start`` with one control moved by ``h``, so a column is the response of
+    one trim iteration to a control change at its beginning (blades, near wake and
+    free wake), and any transient already under way cancels in the difference.
+    The wake is returned to its state on entry.
+    """
+    end = wake.snapshot()
+    J = np.empty((res0.size, len(names)))
+    for j, n in enumerate(names):
+        wake.restore(start)
+        wake.controls[n] += h
+        J[:, j] = (_residual(wake, wake.march(n_steps), ct, mode, cyclic) - res0) / h
+    wake.restore(end)
+    return J
+
+
 def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_per_iter=2,
-              tol=2e-5, max_iter=20, damping=0.8, update_jacobian=False):
+              tol=2e-5, max_iter=20, damping=0.8, update_jacobian=False, jacobian="auto",
+              fd_step=math.radians(0.5), fd_refresh=math.radians(3.0)):
     """Time-march the wake to a periodic state and adjust the controls to the targets.
 
     Parameters
@@ -152,6 +177,33 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         (~0.5 % of C_T per revolution), and secant updates from differences of
         noisy residuals corrupt the Jacobian (residuals jumping 10x between
         iterations were measured); the fixed estimate converges steadily.
+    jacobian : {"auto", "estimate", "fd"}
+        ``"estimate"``: the hover blade-element/momentum estimate
+        (:func:`_jacobian_estimate`; diagonal hub-moment blocks).  ``"fd"``: a
+        finite-difference Jacobian measured on the wake itself (one extra
+        ``revs_per_iter`` march per unknown, repeated from the state at the start
+        of the iteration so the wake's own transient cancels).  ``"auto"``
+        (default): the estimate in hover, ``"fd"`` in forward flight.  There the
+        estimate misses the advancing/retreating-side coupling of collective and
+        cyclic (dC_T/dtheta1s = 0.04 and dC_L/dtheta0 = -0.03 against a diagonal
+        of 0.07 and -0.03 at mu = 0.47, measured) and, with the free stream flowing
+        up through a disk tilted back, gets the coaxial torque-balance row wrong in
+        sign and ~15x in size; the coaxial trim then drifted away at mu = 0.3 and
+        oscillated with growing amplitude at mu = 0.54.  With ``"fd"`` a step
+        larger than 2 deg is scaled down as a whole (its direction kept) instead
+        of clipped per component.
+    fd_step : float
+        Control perturbation of the finite-difference Jacobian [rad].  The
+        revolution-averaged residuals scatter by ~2e-5 at mu = 0.1 and < 2e-6
+        from mu = 0.2 on (coarse wake), i.e. < 10 % of a column at 0.5 deg.
+    fd_refresh : float
+        With ``"fd"`` the Jacobian is measured again once any control has moved
+        more than this from where it was last measured [rad], or when the largest
+        residual more than doubled in one iteration (smaller growth can be the
+        wake's scatter at low mu): the rigid-hub moments and torques are far from
+        linear in the cyclic between zero and the ~9 deg of a mu = 0.54 trim
+        (dC_Q/dtheta1s changed 25x, measured), and a Jacobian kept from the start
+        drove the coaxial torque balance away.
 
     Returns
     -------
@@ -161,23 +213,40 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
     if cyclic is None:
         cyclic = wake.flight.speed > 1.0
     names = _unknowns(wake, cyclic)
-    J = _jacobian_estimate(wake, ct, mode, cyclic)
+    if jacobian == "auto":
+        jacobian = "fd" if wake.flight.speed > 1.0 else "estimate"
+    if jacobian not in ("estimate", "fd"):
+        raise ValueError(f"jacobian must be 'auto', 'estimate' or 'fd', got {jacobian!r}")
+    J = _jacobian_estimate(wake, ct, mode, cyclic) if jacobian == "estimate" else None
     nrev = wake.settings.steps_per_rev
     if all(abs(wake.controls[n]) < 1e-12 for n in names):
-        # blade-element/momentum start: CT = sigma a / 2 (theta75 / 3 - lam / 2)
         for i, rot in enumerate(wake.rotors):
             sigma = rot.nb * rot.chord / (math.pi * rot.R)
             c = ct[i] if mode == "thrust" else ct.sum() / len(wake.rotors)
-            lam = 1.15 * math.sqrt(c / 2.0) + wake.flight.speed * math.sin(wake.flight.alpha) / (
-                wake.omega * rot.R)
-            wake.controls[f"theta0{rotor_suffix(rot.name)}"] = 3.0 * (2.0 * c / (sigma * rot.a) + lam / 2.0)
+            if wake.flight.speed <= 1.0:
+                # blade-element/momentum start: CT = sigma a / 2 (theta75 / 3 - lam / 2)
+                lam = 1.15 * math.sqrt(c / 2.0)
+                theta = 3.0 * (2.0 * c / (sigma * rot.a) + lam / 2.0)
+            else:
+                # forward flight: Glauert inflow lam = lam_i - mu_z, where the free
+                # stream flows *up* through the disk tilted back (mu_z = V sin alpha /
+                # Omega R), and CT = sigma a / 2 (theta75 (1/3 + mu^2/2) - lam / 2)
+                mu = wake.flight.speed * math.cos(wake.flight.alpha) / (wake.omega * rot.R)
+                mu_z = wake.flight.speed * math.sin(wake.flight.alpha) / (wake.omega * rot.R)
+                lam = 1.15 * math.sqrt(c / 2.0)
+                for _ in range(100):
+                    lam = 0.5 * lam + 0.5 * (1.15 * c / (2.0 * math.hypot(mu, lam)) - mu_z)
+                theta = 3.0 * (2.0 * c / (sigma * rot.a) + lam / 2.0) / (1.0 + 1.5 * mu ** 2)
+            wake.controls[f"theta0{rotor_suffix(rot.name)}"] = theta
     wake.march(settle_revs * nrev)
     history = []
     x = np.array([wake.controls[n] for n in names])
-    res_prev = x_prev = None
+    res_prev = x_prev = x_jac = None
+    n_jacobians = 0
     converged = False
     out = None
     for it in range(1, max_iter + 1):
+        start = wake.snapshot() if jacobian == "fd" else None
         out = wake.march(revs_per_iter * nrev)
         res = _residual(wake, out, ct, mode, cyclic)
         history.append({**{n: wake.controls[n] for n in names}, **out,
@@ -185,19 +254,31 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         if np.abs(res).max() < tol:
             converged = True
             break
+        if jacobian == "fd" and (J is None or np.abs(x - x_jac).max() > fd_refresh
+                                 or np.abs(res).max() > 2.0 * np.abs(res_prev).max()):
+            J = _fd_jacobian(wake, names, ct, mode, cyclic, res, start, revs_per_iter * nrev,
+                             fd_step)
+            x_jac = x.copy()
+            n_jacobians += 1
         if update_jacobian and res_prev is not None:
             # Broyden update of the Jacobian from the last step
             dx, dr = x - x_prev, res - res_prev
             if np.dot(dx, dx) > 0:
                 J = J + np.outer(dr - J @ dx, dx) / np.dot(dx, dx)
         step = -np.linalg.solve(J, res)
-        step = np.clip(step, -math.radians(2.0), math.radians(2.0))
+        if jacobian == "fd":
+            big = np.abs(step).max()
+            if big > math.radians(2.0):
+                step = step * (math.radians(2.0) / big)
+        else:
+            step = np.clip(step, -math.radians(2.0), math.radians(2.0))
         x_prev, res_prev = x.copy(), res.copy()
         x = x + damping * step
         for n, v in zip(names, x):
             wake.controls[n] = float(v)
     result = WakeTrim(controls=dict(wake.controls), outputs=out, converged=converged,
-                      iterations=len(history), residual=history[-1]["residual"], history=history)
+                      iterations=len(history), residual=history[-1]["residual"], history=history,
+                      fd_jacobians=n_jacobians)
     wake._trim_state = wake.snapshot()
     wake.trim_result = result
     return result

@@ -27,34 +27,18 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from threadpoolctl import ThreadpoolController
 
 from ..configs import AircraftConfig
 from ..inflow.base import rotor_suffix
 from .biot_savart import segment_velocity, segment_influence, core_radius
 from .outputs import blade_sum_loads, blade_sum_inflow, flap_rate_mbc
+from .far_wake import far_wake_segments
 from .settings import WakeSettings, FlightCondition, WakeSettingsError
+from .threads import single_threaded_blas
 
 __all__ = ["FreeVortexWake", "WakeDivergedError"]
 
 _CONTROL_KEYS = ("theta0", "theta1s", "theta1c")
-
-
-_THREADPOOLS = None
-
-
-def single_threaded_blas():
-    """Context manager limiting BLAS to one thread while the wake marches.
-
-    Each step does a few small dense solves (tens to hundreds of unknowns) between
-    calls to the multi-threaded numba kernel; idle OpenBLAS threads left spinning
-    after those solves compete with numba's threads for the cores (on 2 cores a
-    coaxial revolution took 0.82 s instead of 0.28 s).
-    """
-    global _THREADPOOLS
-    if _THREADPOOLS is None:
-        _THREADPOOLS = ThreadpoolController()
-    return _THREADPOOLS.limit(limits=1, user_api="blas")
 
 
 class WakeDivergedError(RuntimeError):
@@ -136,6 +120,8 @@ class FreeVortexWake:
         self.rho = config.rho
         v = self.flight.speed
         self.v_inf = np.array([-v * math.cos(self.flight.alpha), 0.0, v * math.sin(self.flight.alpha)])
+        #: near-wake segments per trailer (hover and forward flight differ, see WakeSettings)
+        self.n_near = s.n_near(math.hypot(self.v_inf[0], self.v_inf[1]) / (self.omega * self.rotors[0].R))
         self.controls = {self._cname(k, r.name): 0.0 for r in self.rotors for k in _CONTROL_KEYS}
         self.beta_trim = {r.name: np.zeros(3) for r in self.rotors}  # beta0, beta1c, beta1s
         self.points = {}
@@ -183,7 +169,7 @@ class FreeVortexWake:
         """Rigid near-wake trailer points, shape (Nb, Ne+1, n_near+1, 3), age 0 first."""
         rot = self.rotors[ir]
         s = self.settings
-        ages = np.arange(s.n_near + 1) * s.azimuth_step
+        ages = np.arange(self.n_near + 1) * s.azimuth_step
         pts = np.empty((rot.nb, rot.r_edge.size, ages.size, 3))
         # the near wake drifts with the free stream and half the rotor's mean
         # induced velocity (the tip vortex's initial descent is about that)
@@ -223,7 +209,7 @@ class FreeVortexWake:
         self._ct0 = list(cts)
         self.X, self.Xold, self.Vold, self.Vbuf, self.G_tip = [], [], [], [], []
         self.gamma, self.beta, self.beta_dot = [], [], []
-        ages = s.near_wake_extent + np.arange(nk) * s.azimuth_step
+        ages = self.n_near * s.azimuth_step + np.arange(nk) * s.azimuth_step
         self._ages = ages
         mu = np.hypot(self.v_inf[0], self.v_inf[1]) / (self.omega * self.rotors[0].R)
         for ir, rot in enumerate(self.rotors):
@@ -284,55 +270,12 @@ class FreeVortexWake:
                              s.kinematic_viscosity)
             RC.append(np.tile(rc, rot.nb))
             if s.far_wake_revolutions > 0:
-                fa, fb, fg, frc = self._far_wake(ir, X[ir], rc[-1])
+                fa, fb, fg, frc = far_wake_segments(self, ir, X[ir], rc[-1])
                 A.append(fa)
                 B.append(fb)
                 G.append(fg)
                 RC.append(frc)
         return np.concatenate(A), np.concatenate(B), np.concatenate(G), np.concatenate(RC)
-
-    def _far_wake(self, ir, X, rc_end):
-        """Prescribed helical continuation of each tip vortex past the buffer.
-
-        Without it the wake simply ends: the last free turns then see roughly half
-        the induced velocity of an infinite wake, slow down, bunch up and roll up
-        into a ring (the tip vortex radius was measured growing past 1.1 R after
-        3-4 revolutions), and the rotor inflow and its low-frequency gain depend on
-        the wake length. The continuation is a source only (no markers are
-        convected): per blade, an ideal helix about the rotor axis that drifts with
-        the free stream plus the rotor's mean induced velocity (momentum theory's
-        far-wake vortex descent), with the mean radius of the last free revolution
-        and the strength of the last shed turn, ``far_wake_revolutions`` long in
-        ``far_wake_step`` chords (coarse is enough that far from the disk). It
-        starts at the mean height of the wake's end, joined to each blade's
-        actual last marker by one segment.
-        """
-        s = self.settings
-        rot = self.rotors[ir]
-        nrev = s.steps_per_rev
-        nf = s.n_free
-        last = X[:, max(nf + 1 - nrev, 1):nf + 1, :]          # last free revolution
-        radius = np.hypot(last[..., 0] - rot.hub[0], last[..., 1] - rot.hub[1]).mean()
-        radius = float(np.clip(radius, 0.6 * rot.R, 1.0 * rot.R))
-        drift = self.v_inf - np.array([0.0, 0.0, self._lam0[ir] * self.omega * rot.R])
-        n_seg = max(1, int(round(s.far_wake_revolutions * 2 * np.pi / s.far_wake_step)))
-        zeta = self._ages[-1] + np.arange(n_seg + 1) * s.far_wake_step   # wake age [rad]
-        t_rel = (zeta - zeta[0]) / self.omega
-        z0 = X[:, -1, 2].mean()
-        psib = self._psi_blades(rot, self.psi)
-        g_far = self.G_tip[ir][:, -nrev:].mean(axis=1)             # strength of the last turn
-        A, B, G = [], [], []
-        for b in range(rot.nb):
-            ang = psib[b] - zeta
-            pts = np.stack([rot.hub[0] - radius * np.cos(ang) + drift[0] * t_rel,
-                            rot.hub[1] - rot.d * radius * np.sin(ang) + drift[1] * t_rel,
-                            z0 + drift[2] * t_rel], axis=1)
-            pts = np.vstack([X[b, -1][None, :], pts])
-            A.append(pts[:-1])
-            B.append(pts[1:])
-            G.append(np.full(n_seg + 1, rot.d * g_far[b]))
-        rc = np.full(rot.nb * (n_seg + 1), rc_end)
-        return np.concatenate(A), np.concatenate(B), np.concatenate(G), rc
 
     def _attached_segments(self):
         """Bound and near-wake segments of all blades with the map to panel circulation.
@@ -361,13 +304,13 @@ class FreeVortexWake:
                 for j in range(ne + 1):
                     A.append(nw[b, j, :-1, :])
                     B.append(nw[b, j, 1:, :])
-                    for m in range(s.n_near):
+                    for m in range(self.n_near):
                         if j - 1 >= 0:
                             rows.append(seg + m); cols.append(pb + j - 1); vals.append(rot.d)
                         if j < ne:
                             rows.append(seg + m); cols.append(pb + j); vals.append(-rot.d)
-                    seg += s.n_near
-                RC.append(np.full(ne + (ne + 1) * s.n_near, rc))
+                    seg += self.n_near
+                RC.append(np.full(ne + (ne + 1) * self.n_near, rc))
             p0 += rot.nb * ne
         gmap = np.zeros((seg, p0))
         np.add.at(gmap, (np.array(rows), np.array(cols)), np.array(vals, dtype=float))
