@@ -24,6 +24,7 @@ def bode_with_coherence(sources, pairs, fig=None, max_columns=6):
     for k, (out, inp) in enumerate(pairs):
         blk, col = divmod(k, ncol)
         am, ap, ac = axes[3 * blk, col], axes[3 * blk + 1, col], axes[3 * blk + 2, col]
+        first_phase = None      # later curves take the 360-deg branch of the first one
         for resp, label in sources:
             if out not in resp.output_labels or inp not in resp.input_labels:
                 continue
@@ -32,7 +33,12 @@ def bode_with_coherence(sources, pairs, fig=None, max_columns=6):
             w = resp.frequency
             style = "-" if hasattr(resp, "coherence") else "--"
             am.semilogx(w, 20 * np.log10(np.maximum(np.abs(h), 1e-300)), style, label=label)
-            ap.semilogx(w, np.degrees(np.unwrap(np.angle(h))), style, label=label)
+            phase = np.degrees(np.unwrap(np.angle(h)))
+            if first_phase is None:
+                first_phase = phase[0]
+            else:
+                phase -= 360.0 * np.round((phase[0] - first_phase) / 360.0)
+            ap.semilogx(w, phase, style, label=label)
             if hasattr(resp, "coherence"):
                 ac.semilogx(w, resp.coherence[i, j], style, label=label)
         am.set_title(f"{out} / {inp}", fontsize=9)
