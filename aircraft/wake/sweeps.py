@@ -19,7 +19,7 @@ import pandas as pd
 
 __all__ = ["SweepSpec", "run_sweeps", "sweep_inputs"]
 
-_CACHE_VERSION = "wake-2"   # bump when the marching code changes results
+_CACHE_VERSION = "wake-3"   # bump when the marching code changes results
 
 
 @dataclass(frozen=True)

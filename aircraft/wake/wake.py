@@ -207,7 +207,7 @@ class FreeVortexWake:
         self.step_count = 0
         self._lam0 = np.array([s.initial_wake_kappa * math.sqrt(ct / 2.0) for ct in cts])
         self._ct0 = list(cts)
-        self.X, self.Xold, self.Vold, self.Vbuf, self.G_tip = [], [], [], [], []
+        self.X, self.Xold, self.Vold, self.Vbuf, self.G_tip, self.G_shed = [], [], [], [], [], []
         self.gamma, self.beta, self.beta_dot = [], [], []
         ages = self.n_near * s.azimuth_step + np.arange(nk) * s.azimuth_step
         self._ages = ages
@@ -248,6 +248,7 @@ class FreeVortexWake:
             self.Vbuf.append(np.zeros((rot.nb, nk, 3)))
             g0 = 2.0 * math.pi * ct * self.omega * rot.R ** 2 / rot.nb
             self.G_tip.append(np.full((rot.nb, nk), 1.2 * g0))
+            self.G_shed.append(np.full((rot.nb, self.n_near + 1), 1.2 * g0))
             self.gamma.append(np.full((rot.nb, s.n_elements), g0))
             self.beta.append(np.zeros(rot.nb))
             self.beta_dot.append(np.zeros(rot.nb))
@@ -491,9 +492,17 @@ class FreeVortexWake:
             G[:, 1:] = G[:, :-1].copy()
         self._first_step = False
         out = self._solve_blades()
+        key = "gamma_max" if self.settings.tip_vortex_strength == "peak" else "gamma_eq"
         for ir, rot in enumerate(self.rotors):
-            key = "gamma_max" if self.settings.tip_vortex_strength == "peak" else "gamma_eq"
-            self.G_tip[ir][:, 0] = np.maximum(out[rot.name][key], 0.0)
+            # The newest free marker sits at the end of the rigid near wake, n_near
+            # steps of age behind the blade: it carries the circulation the blade
+            # shed n_near steps ago, not the current one (which would rotate the
+            # free wake's cyclic circulation pattern by the near-wake extent in
+            # azimuth and advance its collective response by as much in time)
+            hist = self.G_shed[ir]
+            hist[:, 1:] = hist[:, :-1].copy()
+            hist[:, 0] = np.maximum(out[rot.name][key], 0.0)
+            self.G_tip[ir][:, 0] = hist[:, -1]
         self.step_count += 1
         return out
 
@@ -562,7 +571,7 @@ class FreeVortexWake:
     # ----------------------------------------------------------- snapshots
     def snapshot(self):
         """A deep copy of the marching state (wake, blades, controls, time)."""
-        keys = ("t", "psi", "step_count", "X", "Xold", "Vold", "Vbuf", "G_tip", "gamma",
+        keys = ("t", "psi", "step_count", "X", "Xold", "Vold", "Vbuf", "G_tip", "G_shed", "gamma",
                 "beta", "beta_dot", "_first_step", "_last", "_lam0", "controls", "beta_trim")
         return {k: copy.deepcopy(getattr(self, k)) for k in keys}
 
