@@ -12,12 +12,14 @@ Each aircraft is our coaxial model (:mod:`aircraft.helicopter`) trimmed in hover
 and linearised; the roll-axis plant is the coupling numerator
 p/delta_lat | q->delta_lon, r->delta_ped, w->delta_col (Eq. 7.21).
 
-Wake-identified inflow: ``--identified published`` (default) uses the
+Wake-identified inflow: ``--identified published`` (default, fast) uses the
 dissertation's MFW-identified 6-state hover model (Eq. 5.3, reference data in
-:mod:`aircraft.inflow.published`) because identifying our own free wake at full
-resolution takes over an hour on 2 cores (see benchmarks/wake.py); the aircraft,
-trim, linearisation, EMF and DMO are all ours. Stage 1 also runs the
-identification pipeline end to end (:mod:`studies.identification_demo`).
+:mod:`aircraft.inflow.published`); ``--identified wake`` uses the 6-state model
+identified from our own free wake by :mod:`studies.coaxial_wake_identification`
+(six sweeps, about 8 minutes on 2 cores the first time, cached after). The
+aircraft, trim, linearisation, EMF and DMO are ours either way. Stage 1 also runs
+the identification pipeline end to end on an embedded truth
+(:mod:`studies.identification_demo`).
 
 Writes tables (CSV) and figures (PNG) under ``results/hover_control_comparison/``
 and prints Tables 7.4/7.5-style summaries with the dissertation's values in
@@ -145,6 +147,8 @@ def main(argv=None):
     parser.add_argument("--out", default="results", help="output folder")
     parser.add_argument("--skip-identification", action="store_true")
     parser.add_argument("--n-span", type=int, default=8, help="blade-element Gauss points")
+    parser.add_argument("--identified", choices=("published", "wake"), default="published",
+                        help="wake-identified inflow: the dissertation's Eq. 5.3 model or ours")
     args = parser.parse_args(argv)
     t_start = time.perf_counter()
     if not args.skip_identification:
@@ -153,12 +157,20 @@ def main(argv=None):
         cost = run_demo(seed=args.seed, out_dir=f"{args.out}/identification_demo")
         print(f"[stage 1] done: J_ave = {cost.J.mean():.2f} over {len(cost)} responses\n")
 
-    out = Path(args.out) / "hover_control_comparison"
+    out = Path(args.out) / ("hover_control_comparison" + ("_wake" if args.identified == "wake" else ""))
     out.mkdir(parents=True, exist_ok=True)
     settings = HelicopterSettings(n_span=args.n_span, n_average=1)   # hover: axisymmetric
     print("[stage 2] trim + linearise the coaxial in hover with both inflow models")
     plant_dc, sys_dc, tr_dc = roll_plant(DynamicClimb(), settings)
-    plant_id, sys_id, tr_id = roll_plant(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE), settings)
+    if args.identified == "wake":
+        from studies.coaxial_wake_identification import identified_inflow, identify
+        print("  identifying the 6-state inflow model from our free wake (cached after the first run)")
+        reduction, wake_trim, _, omega = identify()
+        print(f"  identified: J_ave = {reduction.result.J_ave:.1f}")
+        inflow_id = identified_inflow(reduction, wake_trim, omega)
+    else:
+        inflow_id = IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE)
+    plant_id, sys_id, tr_id = roll_plant(inflow_id, settings)
     for name, tr in (("DC", tr_dc), ("ID", tr_id)):
         print(f"  {name}: trim residual {tr.max_residual:.1e}, C_T U/L = {tr.loads['CT_U']:.5f}/{tr.loads['CT_L']:.5f}")
     pd.concat([modes(sys_dc).assign(aircraft="Dynamic Climb"), modes(sys_id).assign(aircraft="identified")]) \

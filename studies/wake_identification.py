@@ -63,7 +63,9 @@ def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, amplitude=0.02, w_min=0
     config = uh60_single_rotor()
     specs = [SweepSpec(c, kind="sweep", amplitude=amplitude, duration=sweep_s, w_min=w_min,
                        w_max=w_max, seed=k) for k, c in enumerate(CONTROLS)]
-    specs.append(SweepSpec("theta0", kind="doublet", amplitude=amplitude, duration=4.0,
+    # the doublet is larger than the sweeps (0.05 rad): the hover wake's own
+    # unsteadiness (~0.002 in lam0) would otherwise be as large as its response
+    specs.append(SweepSpec("theta0", kind="doublet", amplitude=2.5 * amplitude, duration=4.0,
                            pulse_width=0.5))
     runs = run_sweeps(config, settings, FlightCondition(), specs, trim={"ct": ct}, n_jobs=n_jobs,
                       cache_dir=cache_dir, progress=progress)
