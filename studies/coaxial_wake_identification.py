@@ -41,28 +41,23 @@ INFLOW = COAXIAL_HOVER_6STATE.output_names     # lam0_U, ..., lam1c_L
 
 
 def structure(initial, omega):
-    """The 6-state structure in our rotor frames (reduced from §5.3).
+    """The 24-parameter structure of §5.3 in our rotor frames.
 
-    Per rotor, Pitt-Peters-like diagonal M, Lbar and tau with the sine and cosine
-    rows tied; between rotors, Lbar couplings of the collective (l14, l41) and of
-    the cyclic (l25, l52). Two differences from Eq. 5.3, both from our data:
-
-    * each rotor's harmonics are in its own frame (:mod:`aircraft.inflow.base`)
-      and the lower rotor turns the other way, so the cross-rotor cyclic couplings
-      change sign between the sine and cosine rows (measured lam1s_L/CL_U = +12.3,
-      lam1c_L/CM_U = -11.9 at 1 rad/s): they are sign-tied;
-    * cross-rotor M terms and delays were not identifiable on our wake (Cramer-Rao
-      bounds of 20-100 %+, a near-singular M) and are left out.
+    Each rotor's harmonics are in its own frame (:mod:`aircraft.inflow.base`) and
+    the lower rotor turns the other way, so the cross-rotor cyclic couplings change
+    sign between the sine and cosine rows (measured lam1s_L/CL_U = +12.3,
+    lam1c_L/CM_U = -11.9 at 1 rad/s): where Eq. 5.3 ties them with the same sign
+    in its convention, they are sign-tied here (M and Lbar; the delays, being
+    durations, keep plain ties).
     """
-    def pattern(p, cross, cross_sign):
-        c = (lambda name: name) if cross else (lambda name: 0)
-        return [[f"{p}11", 0, 0, c(f"{p}14"), 0, 0],
-                [0, f"{p}22", 0, 0, c(f"{p}25"), 0],
-                [0, 0, f"{p}22", 0, 0, c(f"{cross_sign}{p}25")],
-                [c(f"{p}41"), 0, 0, f"{p}44", 0, 0],
-                [0, c(f"{p}52"), 0, 0, f"{p}55", 0],
-                [0, 0, c(f"{cross_sign}{p}52"), 0, 0, f"{p}55"]]
-    return MLTauStructure(pattern("m", False, ""), pattern("l", True, "-"), pattern("t", False, ""),
+    def pattern(p, cross_sign):
+        return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
+                [0, f"{p}22", 0, 0, f"{p}25", 0],
+                [0, 0, f"{p}22", 0, 0, f"{cross_sign}{p}25"],
+                [f"{p}41", 0, 0, f"{p}44", 0, 0],
+                [0, f"{p}52", 0, 0, f"{p}55", 0],
+                [0, 0, f"{cross_sign}{p}52", 0, 0, f"{p}55"]]
+    return MLTauStructure(pattern("m", "-"), pattern("l", "-"), pattern("t", ""),
                           inputs=COAXIAL_HOVER_6STATE.input_names,
                           outputs=COAXIAL_HOVER_6STATE.output_names,
                           initial=initial, omega=omega)
@@ -70,14 +65,17 @@ def structure(initial, omega):
 
 def initial_values(lam_over_c):
     """Data-driven start: Lbar from the inverse of the measured low-frequency
-    lambda/C (real part, mean of the three lowest frequencies), M from
-    Pitt-Peters in hover (8/(3 pi), -16/(45 pi)), delays 20 ms. A start from the
-    printed Eq. 5.3 values lands in a local minimum with the cyclic coupling of the
-    wrong sign for our frames (J_ave 1700 against 300)."""
+    lambda/C (real part, mean of the three lowest frequencies); M diagonal from
+    Pitt-Peters in hover (8/(3 pi), -16/(45 pi)), cyclic cross terms 0.05 and
+    collective cross terms 0; delays 20 ms (own rotor) and 50 ms (cross). A start
+    from the printed Eq. 5.3 values ended in a degenerate, near-singular M
+    (J_ave 1300)."""
     g0 = np.real(lam_over_c.frdata[:, :, :3].mean(axis=2))
     l0 = np.linalg.inv(g0)
     init = {"m11": 8 / (3 * np.pi), "m44": 8 / (3 * np.pi), "m22": -16 / (45 * np.pi),
-            "m55": -16 / (45 * np.pi), "t11": 0.02, "t22": 0.02, "t44": 0.02, "t55": 0.02}
+            "m55": -16 / (45 * np.pi), "m14": 0.0, "m41": 0.0, "m25": 0.05, "m52": 0.05,
+            "t11": 0.02, "t22": 0.02, "t44": 0.02, "t55": 0.02,
+            "t14": 0.05, "t41": 0.05, "t25": 0.05, "t52": 0.05}
     for name, (i, j) in {"l11": (0, 0), "l14": (0, 3), "l41": (3, 0), "l44": (3, 3),
                          "l22": (1, 1), "l25": (1, 4), "l52": (4, 1), "l55": (4, 4)}.items():
         init[name] = float(l0[i, j])
@@ -112,19 +110,8 @@ def identify(settings=None, *, sweep_s=45.0, amplitude=0.02, w_min=0.7, w_max=30
     measured = combine_responses(simo)
     lam_over_c = joint_input_output(measured.select(INFLOW), measured.select(LOADS))
     omega = config.rotors[0].omega
-    # the cyclic coupling block has local minima: start from the measured
-    # asymptotes, and -- because the upper-from-lower coupling is nearly 90 deg out
-    # of phase at the lowest frequencies, so the sign of its real part (hence of
-    # the l25 start) is not determined there -- from them with l25 of either sign;
-    # keep the best fit among those that fit all 12 responses (a zero start would
-    # drop those responses from the cost)
-    start = initial_values(lam_over_c)
-    candidates = []
-    for sign in (1.0, -1.0):
-        init = {**start, "l25": sign * abs(start["l25"])}
-        candidates.append(reduce(structure(init, omega), lam_over_c, frequency_ranges=(1.0, 25.0)))
-    complete = [r for r in candidates if len(r.result.cost_table) == 12] or candidates
-    reduction = min(complete, key=lambda r: r.result.J_ave)
+    reduction = reduce(structure(initial_values(lam_over_c), omega), lam_over_c,
+                       frequency_ranges=(1.0, 25.0))
     return reduction, trim, runs, omega
 
 
