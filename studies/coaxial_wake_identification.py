@@ -33,8 +33,7 @@ from aircraft.inflow import IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 from aircraft.wake import FlightCondition, SweepSpec, WakeSettings, run_sweeps
 from flightid import combine_responses, frequency_response, joint_input_output, reduce, verify
-from flightid import MLTauStructure
-from studies.identification_demo import CONTROLS, truth_values
+from studies.identification_demo import CONTROLS, coaxial_6state_structure, truth_values
 
 LOADS = COAXIAL_HOVER_6STATE.input_names       # CT_U, CL_U, CM_U, CT_L, CL_L, CM_L
 INFLOW = COAXIAL_HOVER_6STATE.output_names     # lam0_U, ..., lam1c_L
@@ -50,17 +49,7 @@ def structure(initial, omega):
     in its convention, they are sign-tied here (M and Lbar; the delays, being
     durations, keep plain ties).
     """
-    def pattern(p, cross_sign):
-        return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
-                [0, f"{p}22", 0, 0, f"{p}25", 0],
-                [0, 0, f"{p}22", 0, 0, f"{cross_sign}{p}25"],
-                [f"{p}41", 0, 0, f"{p}44", 0, 0],
-                [0, f"{p}52", 0, 0, f"{p}55", 0],
-                [0, 0, f"{cross_sign}{p}52", 0, 0, f"{p}55"]]
-    return MLTauStructure(pattern("m", "-"), pattern("l", "-"), pattern("t", ""),
-                          inputs=COAXIAL_HOVER_6STATE.input_names,
-                          outputs=COAXIAL_HOVER_6STATE.output_names,
-                          initial=initial, omega=omega)
+    return coaxial_6state_structure(initial, omega, cyclic_cross_sign="-")
 
 
 def initial_values(lam_over_c):

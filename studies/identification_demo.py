@@ -29,16 +29,22 @@ CONTROLS = ["theta0_U", "theta1s_U", "theta1c_U", "theta0_L", "theta1s_L", "thet
 FREE_ELEMENTS = [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)]
 
 
-def coaxial_6state_structure(initial, omega):
-    """The §5.3 structure: Pitt-Peters-like diagonal blocks, roll/pitch symmetry ties."""
-    def pattern(p):
+def coaxial_6state_structure(initial, omega, cyclic_cross_sign=""):
+    """The §5.3 structure: Pitt-Peters-like diagonal blocks, roll/pitch symmetry ties.
+
+    ``cyclic_cross_sign="-"`` sign-ties the cross-rotor cyclic M and Lbar terms of
+    the cosine rows to those of the sine rows (a lower rotor in its own, mirrored
+    frame; see :mod:`studies.coaxial_wake_identification`); delays keep plain ties.
+    """
+    def pattern(p, sign):
         return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
                 [0, f"{p}22", 0, 0, f"{p}25", 0],
-                [0, 0, f"{p}22", 0, 0, f"{p}25"],
+                [0, 0, f"{p}22", 0, 0, f"{sign}{p}25"],
                 [f"{p}41", 0, 0, f"{p}44", 0, 0],
                 [0, f"{p}52", 0, 0, f"{p}55", 0],
-                [0, 0, f"{p}52", 0, 0, f"{p}55"]]
-    return MLTauStructure(pattern("m"), pattern("l"), pattern("t"),
+                [0, 0, f"{sign}{p}52", 0, 0, f"{p}55"]]
+    return MLTauStructure(pattern("m", cyclic_cross_sign), pattern("l", cyclic_cross_sign),
+                          pattern("t", ""),
                           inputs=COAXIAL_HOVER_6STATE.input_names,
                           outputs=COAXIAL_HOVER_6STATE.output_names,
                           initial=initial, omega=omega)
