@@ -22,7 +22,8 @@ from .sweeps import doublet, frequency_sweep, multistep_3211, shaped_noise
 from .response import MeasuredResponse, combine_responses, frequency_response
 from .joint import joint_input_output
 from .structures import FGCStructure, GainDelayStructure, MLTauStructure, ModelStructure
-from .fitting import FitResult, cifer_cost, coherence_weight, fit
+from .fitting import COHERENCE_FLOOR, FitResult, cifer_cost, coherence_weight, fit
+from .degeneracy import DegeneracyReport, MultiStartReport, NoInformationError
 from .reduction import ReductionResult, reduce
 from .verification import VerificationResult, theil_inequality, verify
 
@@ -32,7 +33,8 @@ __all__ = [
     "MeasuredResponse", "combine_responses", "frequency_response",
     "joint_input_output",
     "FGCStructure", "GainDelayStructure", "MLTauStructure", "ModelStructure",
-    "FitResult", "cifer_cost", "coherence_weight", "fit",
+    "COHERENCE_FLOOR", "FitResult", "cifer_cost", "coherence_weight", "fit",
+    "DegeneracyReport", "MultiStartReport", "NoInformationError",
     "ReductionResult", "reduce",
     "VerificationResult", "theil_inequality", "verify",
 ]
