@@ -25,6 +25,7 @@ from .structures import FGCStructure, GainDelayStructure, MLTauStructure, ModelS
 from .fitting import COHERENCE_FLOOR, FitResult, cifer_cost, coherence_weight, fit
 from .degeneracy import DegeneracyReport, MultiStartReport, NoInformationError
 from .reduction import ReductionResult, reduce
+from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
 
 __all__ = [
@@ -36,5 +37,6 @@ __all__ = [
     "COHERENCE_FLOOR", "FitResult", "cifer_cost", "coherence_weight", "fit",
     "DegeneracyReport", "MultiStartReport", "NoInformationError",
     "ReductionResult", "reduce",
+    "Stage", "StagedFitResult", "fit_staged",
     "VerificationResult", "theil_inequality", "verify",
 ]
