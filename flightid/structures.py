@@ -315,12 +315,17 @@ class FGCStructure(ModelStructure):
     ``F`` (n x n) and ``G`` (n x n_inputs) are pattern matrices; ``C`` is a fixed
     numeric matrix (e.g. the 6 x 12 summing matrix of Eq. 2.32); ``tau``
     (n_outputs x n_inputs) delays input j on output i.  ``omega`` as in
-    :class:`MLTauStructure`.
+    :class:`MLTauStructure`. ``D`` (n_outputs x n_inputs pattern, optional) adds a
+    direct feedthrough ``y = C x + D u(t - tau)``. Flap-rate inputs (Eq. 6.2) are
+    just further named inputs (columns of ``G``); ties across axes are names
+    shared between entries, with ``-`` for the opposite sign.
     """
 
     def __init__(self, F, G, C, tau=None, *, inputs, outputs, initial, fixed=(), omega=None,
-                 states=None):
-        self._init_parameters({"F": F, "G": G, "tau": tau}, inputs, outputs, initial, fixed, omega)
+                 states=None, D=None):
+        self._init_parameters({"F": F, "G": G, "tau": tau, "D": D}, inputs, outputs, initial, fixed, omega)
+        if D is not None and self._patterns["D"].shape != (len(self.outputs), len(self.inputs)):
+            raise IdentificationError(f"D must be {len(self.outputs)} x {len(self.inputs)}")
         n = self._patterns["F"].shape[0]
         if self._patterns["F"].shape != (n, n):
             raise IdentificationError("F must be square")
@@ -350,13 +355,17 @@ class FGCStructure(ModelStructure):
             vg = np.linalg.solve(v, g)
             residues = (cv.T[:, :, None] * vg[:, None, :]).reshape(n, -1)      # (n, o * j)
             res = (1.0 / (sm[:, None] - lam[None, :])) @ residues                # (w, o * j)
-            return np.moveaxis(res.reshape(s.size, cv.shape[0], g.shape[1]), 0, -1)
-        res = np.linalg.solve(sm[:, None, None] * np.eye(n)[None] - f[None], np.broadcast_to(g, (s.size,) + g.shape))
-        return np.moveaxis(self.C @ res, 0, -1)
+            out = np.moveaxis(res.reshape(s.size, cv.shape[0], g.shape[1]), 0, -1)
+        else:
+            res = np.linalg.solve(sm[:, None, None] * np.eye(n)[None] - f[None],
+                                  np.broadcast_to(g, (s.size,) + g.shape))
+            out = np.moveaxis(self.C @ res, 0, -1)
+        return out + mats["D"][:, :, None] if "D" in mats else out
 
     def _abcd(self, mats):
         scale = 1.0 if self.omega is None else self.omega
-        return scale * mats["F"], scale * mats["G"], self.C, np.zeros((len(self.outputs), len(self.inputs)))
+        d = mats.get("D", np.zeros((len(self.outputs), len(self.inputs))))
+        return scale * mats["F"], scale * mats["G"], self.C, d
 
 
 class GainDelayStructure(ModelStructure):
