@@ -306,9 +306,46 @@ class _Problem:
             parts.append(np.array([self.weight * max(0.0, worst)]))
         return np.concatenate(parts)
 
-    def solve(self, x0, max_nfev):
+    def _dead(self, x):
+        h = self.structure.frequency_response(self.omega, dict(zip(self.free, x)))
+        return [k for k, (p, sl) in enumerate(zip(self.pairs, self.slices)) if not np.any(h[p.i, p.j, sl] != 0)]
+
+    def revive(self, x):
+        """Start values for zero-valued parameters that alone feed a fitted pair whose
+        model response is identically zero. In dB such a pair sits at -inf with a
+        zero gradient, so the optimizer cannot leave it (e.g. a stage that frees
+        the gains of newly added responses at 0). Each such parameter starts where
+        its (probed) response has the data's median magnitude, with the sign whose
+        phase fits better. Pairs with a live model response are never touched."""
+        x = np.array(x, float)
+        dead = self._dead(x)
+        for k in range(x.size):
+            if not dead:
+                break
+            if x[k] != 0 or self.lower[k] == 0:        # delays stay as given
+                continue
+            probe = x.copy()
+            probe[k] = 1.0
+            hp = self.structure.frequency_response(self.omega, dict(zip(self.free, probe)))
+            live = [d for d in dead if np.any(hp[self.pairs[d].i, self.pairs[d].j, self.slices[d]] != 0)]
+            if not live:
+                continue
+            ratio = np.median([np.median(np.abs(self.pairs[d].h)) /
+                               np.median(np.abs(hp[self.pairs[d].i, self.pairs[d].j, self.slices[d]]))
+                               for d in live])
+            trials = []
+            for v in (ratio, -ratio):
+                probe[k] = v
+                trials.append((float(np.sum(self.residuals(probe, with_penalty=True) ** 2)), v))
+            x[k] = min(trials)[1]
+            dead = self._dead(x)
+        return x
+
+    def solve(self, x0, max_nfev, revive=False):
         """Least squares from ``x0``; returns (sol, fitted structure, stable)."""
         x = np.maximum(np.asarray(x0, float), self.lower)
+        if revive:
+            x = self.revive(x)
         self.weight = 1e3
         for _ in range(4):
             sol = least_squares(self.residuals, x, bounds=(self.lower, np.full_like(x, np.inf)),
@@ -341,7 +378,7 @@ def _start_points(x0, lower, starts, seed, spread):
 def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=None,
         n_omega=20, coherence_min=0.6, stability_margin=0.0, require_stable=True,
         max_nfev=None, starts=1, seed=None, start_spread=0.5, square_blocks=None,
-        multistart_cost_tol=None, multistart_parameter_rtol=0.02) -> FitResult:
+        multistart_cost_tol=None, multistart_parameter_rtol=0.02, revive_dead_pairs=False) -> FitResult:
     """Minimise the CIFER cost of ``structure`` against measured responses.
 
     Parameters
@@ -389,6 +426,11 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     multistart_cost_tol, multistart_parameter_rtol : float
         Agreement criteria of the starts: J_ave spread (default 1 % of the best
         J_ave, at least 1e-6) and relative parameter spread (2 %).
+    revive_dead_pairs : bool
+        A fitted pair whose model response is identically zero at the start sits
+        at -inf dB with zero gradient. With True, zero-valued parameters that
+        feed such a pair start at the data's median magnitude with the better
+        sign (see ``_Problem.revive``); default False keeps the given start.
 
     Returns
     -------
@@ -429,17 +471,18 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     with threadpool_limits(1):
         return _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable,
                     max_nfev, starts, seed, start_spread, square_blocks, multistart_cost_tol,
-                    multistart_parameter_rtol)
+                    multistart_parameter_rtol, revive_dead_pairs)
 
 
 def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable, max_nfev,
-         starts, seed, start_spread, square_blocks, multistart_cost_tol, multistart_parameter_rtol):
+         starts, seed, start_spread, square_blocks, multistart_cost_tol, multistart_parameter_rtol,
+         revive_dead_pairs):
     free = structure.free_names
     problem = _Problem(structure, pair_data, stability_margin)
     x0 = np.array([structure.values[n] for n in free])
     records, outcomes, first_error = [], [], None
     for k, xs in enumerate(_start_points(x0, problem.lower, starts, seed, start_spread)):
-        sol, fitted, stable = problem.solve(xs, max_nfev)
+        sol, fitted, stable = problem.solve(xs, max_nfev, revive_dead_pairs)
         j_ave = float(np.mean([cifer_cost(fitted.frequency_response(p.omega)[p.i, p.j], p.h, p.coh)
                                for p in pair_data]))
         rec = {"start": k, "J_ave": j_ave if stable or not require_stable else np.nan,

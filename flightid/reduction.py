@@ -13,6 +13,8 @@ cost cannot show (issue 9: removing one delay let the collective M and Lbar
 run to infinity along a flat direction at almost no cost): a parameter that
 grows by orders of magnitude (``runaway_factor``), a Hessian condition number
 that blows up (``max_condition``), or a new flat direction. The log says why.
+Parameters a removal leaves without any influence (the pole of a mode whose
+gain was removed) are held fixed at their value, and the log says so.
 """
 from __future__ import annotations
 
@@ -120,6 +122,7 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         else:
             break
         tried.add(name)
+        idle = []
         trial_structure = current.structure.fix(name, 0.0)
         entry = {"parameter": name, "reason": reason, "metric_pct": metric,
                  "J_ave_before": current.J_ave}
@@ -127,6 +130,11 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
             if not trial_structure.free_names:
                 raise IdentificationError("no free parameter would remain")
             trial = fit(trial_structure, data, **fit_kwargs)
+            # a removal can leave parameters without any influence (the pole of a
+            # mode whose gain was removed): hold them where they are, not at zero
+            idle = [n for n in trial.degeneracy.no_influence if n != name]
+            if idle and len(idle) < len(trial.structure.free_names):
+                trial = fit(trial.structure.fix(idle), data, **fit_kwargs)
         except (UnstableModelError, IdentificationError) as err:
             entry.update(J_ave_after=float("nan"), max_single_rise=float("nan"), accepted=False,
                          runaway=False, note=str(err)[:120])
@@ -139,6 +147,8 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         why = _runaway(current, trial, runaway_factor, max_condition, refuse_flat)
         ok = cost_ok and not why
         note = "" if ok else (f"runaway, no finite optimum: {why}; kept" if why else "cost rise too large; kept")
+        if ok and idle:
+            note = f"also held fixed (no influence left): {idle}"
         entry.update(J_ave_after=trial.J_ave, max_single_rise=rise, accepted=ok, runaway=bool(why),
                      note=note)
         log.append(entry)

@@ -58,7 +58,9 @@ class Stage:
         off-rotor frequency responses").
     set_values : dict, optional
         Values assigned before the stage (e.g. a stable start for states that
-        are switched on here).
+        are switched on here). A response whose model is identically zero at the
+        stage start (all its gains still 0) has no gradient in dB: give its
+        parameters a start here, or ``fit_kwargs={"revive_dead_pairs": True}``.
     prune_insensitive : float, optional
         After the fit, parameters freed here whose insensitivity [%] exceeds
         this are set back to zero, fixed, and the stage is re-fitted
