@@ -12,8 +12,10 @@ a flight-test record or a wind-tunnel record.
               │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
               ▼
     MLTauStructure / FGCStructure / GainDelayStructure  (free / fixed / tied parameters)
-              │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability)
-              │ reduce (automatic Fig. 6.1 loop)
+              │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability, multi-start;
+              │       DegeneracyReport: flat directions, square-block singular values)
+              │ fit_staged (plan of Stage s, §6.4.3)
+              │ reduce (automatic Fig. 6.1 loop; refuses removals without a finite optimum)
               ▼
     FitResult.model  ─►  control.StateSpace (Padé delays)  ─►  verify (TIC, RMS)
 """
