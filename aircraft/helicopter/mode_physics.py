@@ -11,9 +11,11 @@ left eigenvectors, normalised to sum 1 over the states), which is
 scale-invariant, unlike the eigenvector itself. States are grouped by name
 (:data:`STATE_GROUPS`): body translation/rotation, flap coning, reactionless
 and cyclic flap, inflow. A mode's label follows from its dominant group and,
-for the rotor modes, its frequency against the rotor speed (in the fixed frame
-a hingeless rotor's cyclic flap modes sit near (nu - 1) Omega, regressive, and
-(nu + 1) Omega, progressive).
+for the cyclic flap modes, the sense in which the tip-path plane whirls: in the
+fixed frame a rotor with flap frequency nu > 1 has a regressive mode whirling
+at (1 - nu) Omega, against the rotation, and a progressive one at (1 + nu) Omega,
+with it. (The frequency is no test: with a light fuselage the regressive
+flap-body mode rises above Omega.)
 """
 from __future__ import annotations
 
@@ -63,10 +65,33 @@ def _participation(a):
     left = np.linalg.inv(right).T
     part = np.abs(right * left)
     part = part / np.where(part.sum(axis=0) > 0, part.sum(axis=0), 1.0)
-    return lam, part
+    return lam, part, right
 
 
-def _label(lam, share, omega):
+def _whirl(labels, vec):
+    """Sense of the tip-path-plane whirl of a mode (eigenvector ``vec``, Im(lambda) > 0).
+
+    With beta1c ~ Re(c e^{i w t}), beta1s ~ Re(s e^{i w t}) the high point of the
+    disk moves in the rotor's own direction of rotation when Im(conj(c) s) < 0.
+    Returns a number in [-1, 1]: > 0 against the rotation (regressive: for
+    nu > 1 the fixed-frame whirl (1 - nu) Omega is negative), < 0 with it
+    (progressive, (1 + nu) Omega); each rotor in its own frame.
+    """
+    num = den = 0.0
+    for i, name in enumerate(labels):
+        m = re.match(r"^beta1c(_U|_L)?$", name.strip())
+        if not m:
+            continue
+        sfx = m.group(1) or ""
+        if f"beta1s{sfx}" not in labels:
+            continue
+        c, s = vec[i], vec[labels.index(f"beta1s{sfx}")]
+        num += float(np.imag(np.conj(c) * s))
+        den += abs(c) ** 2 + abs(s) ** 2
+    return num / den if den > 0 else 0.0
+
+
+def _label(lam, share, omega, whirl=0.0):
     wn = abs(lam)
     osc = abs(lam.imag) > 1e-6
     rotor = {g: share[g] for g in _ROTOR}
@@ -80,7 +105,9 @@ def _label(lam, share, omega):
             return "coning flap"
         if top_rotor == "reactionless":
             return "reactionless flap"
-        if wn > omega:
+        # regressive/progressive by the whirl sense (the flap-body mode of a light
+        # fuselage can sit above Omega); by frequency only if the sense is unclear
+        if whirl < -0.05 or (abs(whirl) <= 0.05 and wn > omega):
             return "progressive flap"
         return "regressive flap (" + ("roll" if share["roll"] + share["lateral"] >= share["pitch"]
                                       + share["longitudinal"] else "pitch") + ")"
@@ -125,7 +152,7 @@ def classify_modes(sys, omega=None):
     a = np.asarray(sys.A, float)
     labels = list(sys.state_labels)
     groups = [state_group(s) for s in labels]
-    lam, part = _participation(a)
+    lam, part, right = _participation(a)
     rows = []
     for k, l in enumerate(lam):
         if l.imag < -1e-9:
@@ -137,7 +164,7 @@ def classify_modes(sys, omega=None):
         wn = abs(l)
         rows.append({"real": l.real, "imag": abs(l.imag), "frequency": wn,
                      "damping": -l.real / wn if wn > 0 else np.nan,
-                     "physics": _label(l, share, omega),
+                     "physics": _label(l, share, omega, _whirl(labels, right[:, k])),
                      "dominant_states": ", ".join(f"{labels[i]} ({part[i, k]:.2f})" for i in top),
                      **{f"share_{g}": v for g, v in share.items()}})
     return pd.DataFrame(rows).sort_values("frequency").reset_index(drop=True)
@@ -197,7 +224,7 @@ def pair_modes(ours, reference):
     return pd.DataFrame(rows)
 
 
-def flap_mode_damping(sys, band=(4.0, 20.0), reference=None):
+def flap_mode_damping(sys, band=(4.0, 20.0), reference=None, max_shift=0.25):
     """Where the regressive flap (flap-body) modes sit and how damped they are.
 
     Two ways to find them:
@@ -219,14 +246,19 @@ def flap_mode_damping(sys, band=(4.0, 20.0), reference=None):
         Frequency band [rad/s] of the ``min_damping_in_band`` column (the
         dissertation's "min zeta 4-20 rad/s", Table 7.5).
     reference : control.StateSpace or pandas.DataFrame, optional
+    max_shift : float
+        With ``reference``: a mode counts as tracked when the nearest pole lies
+        within ``max_shift * |reference pole|``; otherwise (e.g. the pitch flap
+        mode of a plant that holds q) its row has NaN frequency and damping and
+        ``tracked`` False.
 
     Returns
     -------
     pandas.DataFrame
         One row per regressive flap mode: ``physics``, ``frequency`` [rad/s],
         ``damping``, ``real`` [1/s], ``in_band`` (frequency inside ``band``),
-        ``distance`` (to the reference pole, [rad/s]; 0 without reference) and
-        ``min_damping_in_band`` (the least damped pole of ``sys`` in ``band``,
+        ``distance`` (to the reference pole, [rad/s]; 0 without reference),
+        ``tracked`` and ``min_damping_in_band`` (the least damped pole of ``sys`` in ``band``,
         whatever its physics, for comparison).
     """
     a = np.asarray(sys.A if hasattr(sys, "A") else sys, float)
@@ -241,14 +273,18 @@ def flap_mode_damping(sys, band=(4.0, 20.0), reference=None):
         flap = table[table.physics.str.startswith("regressive flap")]
         out = flap[["physics", "frequency", "damping", "real"]].copy()
         out["distance"] = 0.0
+        out["tracked"] = True
     else:
         ref = reference if isinstance(reference, pd.DataFrame) else flap_mode_damping(reference, band)
         rows = []
         for r in ref.itertuples():
             p_ref = complex(r.real, np.sqrt(max(r.frequency ** 2 - r.real ** 2, 0.0)))
             k = int(np.argmin(np.abs(poles - p_ref)))
-            rows.append({"physics": r.physics, "frequency": wn[k], "damping": zeta[k],
-                         "real": poles[k].real, "distance": float(abs(poles[k] - p_ref))})
+            dist = float(abs(poles[k] - p_ref))
+            ok = dist <= max_shift * abs(p_ref)
+            rows.append({"physics": r.physics, "frequency": wn[k] if ok else np.nan,
+                         "damping": zeta[k] if ok else np.nan, "real": poles[k].real if ok else np.nan,
+                         "distance": dist, "tracked": ok})
         out = pd.DataFrame(rows)
     if out.empty:
         raise ValueError("no regressive flap mode found: the system has no named cyclic flap states "
