@@ -90,7 +90,26 @@ def _differs(row):
     return max(df, dr)
 
 
-def _reasons(ours_clr, ours_id):
+def heave_closed_form(trim_result):
+    """Quasi-steady heave damping Z_w [1/s] of uniform-inflow momentum + blade-element theory.
+
+    Per rotor C_T = (a sigma / 2) int_r0^1 (theta r^2 - lam_tot r) dr and
+    dC_T = 4 lam dlam_i + 2 lam dmu_z give dC_T/dmu_z = -2 k lam / (4 lam + k),
+    k = a sigma (1 - r0^2) / 4 (Z_w = -2 a sigma lam / (16 lam + a sigma) rho A Omega R / m
+    without root cut-out); summed over the rotors at their trimmed induced inflow.
+    """
+    heli = trim_result.helicopter
+    names = heli.state_names
+    zw = 0.0
+    for rm in heli.rotors:
+        rc = rm.config
+        lam = trim_result.x[names.index(f"lam0_{rc.name}")]
+        k = rc.lift_slope * rc.solidity * (1 - rc.root_cutout ** 2) / 4
+        zw -= heli.config.rho * rc.disk_area * rc.tip_speed * 2 * k * lam / (4 * lam + k)
+    return zw / heli.config.mass
+
+
+def _reasons(ours_clr, ours_id, zw=np.nan):
     """Reason per physics label; numbers are computed from our tables, never typed in."""
     def pole(t, lab):
         r = t[t.physics == lab]
@@ -100,14 +119,14 @@ def _reasons(ours_clr, ours_id):
     swap = (f"printed heave/yaw labels look swapped: the printed 'yaw' moves with the inflow model "
             f"(0.478 CLR -> 0.857 MFW ID, x1.79) as our heave does (x{heave_i / heave_c:.2f}) and the printed "
             f"'heave' does not (x0.99) like our yaw (x{yaw_i / yaw_c:.2f}); our heave is the momentum-theory "
-            f"thrust-inflow damping Z_w (closed form ~0.29 1/s for this rotor), our yaw the rotor-torque "
+            f"thrust-inflow damping Z_w (quasi-steady closed form {zw:.3f} 1/s), our yaw the rotor-torque "
             f"damping over Izz (assumption, 127,400 kg m^2 with the rotors' polar inertia). Swapped, the "
             f"CLR rows read {heave_c:.3f} vs 0.478 and {yaw_c:.4f} vs 0.0866")
     return {
         "heave": swap, "yaw": swap,
         "phugoid": "hover phugoid set by the speed stability M_u/M_q and L_v/L_p of the rotor and X_u, Y_u "
                    "(flapback of a stiff rotor + hub height); nearly independent of the inertias (0.24 with "
-                   "the old 12,000/60,000 kg m^2, 0.27 now); not resolved: HeliUM's airfoil tables, elastic "
+                   "the previous 12,000/60,000 kg m^2 and I_b = 4,700 kg m^2, 0.27 now); not resolved: HeliUM's airfoil tables, elastic "
                    "blades and fuselage/hub drag are not modelled here (simple linear lift, rigid blades)",
         "roll subsidence": "printed 'spiral' 2.788 and 'pitch' 4.18: roll subsidence (Ixx ~ Iyy/4.4) should be "
                            "the faster one, as ours is (p-dominated 4.65, q-dominated 2.60); Table 7.2 calls three "
@@ -186,7 +205,7 @@ def main(out_dir="results/coaxial_hover_poles", with_sensitivity=True):
     ours_clr, tr_clr = pole_table(ClimbingLowerRotor(), config)
     ours_id, tr_id = pole_table(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE), config)
     ref1, ref2 = reference_table(TABLE_7_1), reference_table(TABLE_7_2, momentum_inflow=False)
-    reasons = _reasons(ours_clr, ours_id)
+    reasons = _reasons(ours_clr, ours_id, heave_closed_form(tr_clr))
     expl = []
     fig = Figure(figsize=(9, 5), constrained_layout=True)
     ax = fig.subplots()
