@@ -170,6 +170,10 @@ def test_flap_mode_damping_tracks_the_mode_through_a_loop_closure(clr_sys):
     roll = held[held.physics == "regressive flap (roll)"].iloc[0]
     pitch = held[held.physics == "regressive flap (pitch)"].iloc[0]
     assert roll.tracked and not pitch.tracked and np.isnan(pitch.damping)   # q is held: no pitch flap mode
+    # a copy without the trim attached (no rotor speed known) is named by whirl sense alone
+    bare_copy = control.ss(clr_sys.A, clr_sys.B, clr_sys.C, clr_sys.D, states=clr_sys.state_labels,
+                           inputs=clr_sys.input_labels, outputs=clr_sys.output_labels)
+    pd.testing.assert_frame_equal(flap_mode_damping(bare_copy), bare)
     # closing a loop moves the pole; zero gain must find the plant's pole exactly
     ref = bare.set_index("physics").loc["regressive flap (roll)"]
     p_ref = complex(ref.real, np.sqrt(ref.frequency ** 2 - ref.real ** 2))

@@ -100,14 +100,14 @@ def _label(lam, share, omega, whirl=0.0):
     if wn < 1e-9:
         return "heading"
     top_rotor = max(rotor, key=rotor.get)
-    if osc and omega and rotor[top_rotor] >= 0.3:
+    if osc and rotor[top_rotor] >= 0.3:
         if top_rotor == "coning":
             return "coning flap"
         if top_rotor == "reactionless":
             return "reactionless flap"
         # regressive/progressive by the whirl sense (the flap-body mode of a light
         # fuselage can sit above Omega); by frequency only if the sense is unclear
-        if whirl < -0.05 or (abs(whirl) <= 0.05 and wn > omega):
+        if whirl < -0.05 or (abs(whirl) <= 0.05 and omega and wn > omega):
             return "progressive flap"
         return "regressive flap (" + ("roll" if share["roll"] + share["lateral"] >= share["pitch"]
                                       + share["longitudinal"] else "pitch") + ")"
@@ -116,7 +116,8 @@ def _label(lam, share, omega, whirl=0.0):
         if share["inflow_mean"] >= share["inflow_cyclic"] and share["inflow_mean"] > 0:
             return "inflow (mean)"
         return "inflow (cyclic)" if share["inflow_cyclic"] > 0 else "inflow"
-    if osc and omega and wn > 0.3 * omega and rotor[top_rotor] > 0.15:
+    # (without the rotor speed: above 5 rad/s, faster than any body mode of a hovering aircraft)
+    if osc and wn > (0.3 * omega if omega else 5.0) and rotor[top_rotor] > 0.15:
         # a flap-body oscillation in which the body rates dominate the participation
         return "regressive flap (" + ("roll" if share["roll"] >= share["pitch"] else "pitch") + ")"
     if osc:
@@ -137,8 +138,9 @@ def classify_modes(sys, omega=None):
     sys : control.StateSpace
         Named states (e.g. from :func:`aircraft.helicopter.linearize`).
     omega : float, optional
-        Rotor speed [rad/s] separating regressive from progressive flap modes.
-        Default: ``sys.trim.helicopter.config.rotors[0].omega`` when present.
+        Rotor speed [rad/s]; only a fallback where the whirl sense of a flap
+        mode is unclear. Default: ``sys.trim.helicopter.config.rotors[0].omega``
+        when present, else the whirl sense alone decides.
 
     Returns
     -------
