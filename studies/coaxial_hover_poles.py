@@ -109,39 +109,62 @@ def heave_closed_form(trim_result):
     return zw / heli.config.mass
 
 
-def _reasons(ours_clr, ours_id, zw=np.nan):
-    """Reason per physics label; numbers are computed from our tables, never typed in."""
+#: the coaxial's assumption values before issue 11 (for the "previously" column of the reasons)
+PREVIOUS = {"Ixx": 12000.0, "Iyy": 60000.0, "Izz": 55000.0, "flap_inertia": 4700.0}
+
+
+def previous_config(config=None):
+    """The coaxial with the assumption values it had before (inertias, blade flap inertia)."""
+    from dataclasses import replace
+    config = config or coaxial_compound()
+    rotors = tuple(replace(r, flap_inertia=PREVIOUS["flap_inertia"]) for r in config.rotors)
+    return replace(config, rotors=rotors, Ixx=PREVIOUS["Ixx"], Iyy=PREVIOUS["Iyy"], Izz=PREVIOUS["Izz"])
+
+
+def _reasons(ours_clr, ours_id, ours_prev, config, zw=np.nan):
+    """Reason per physics label; numbers come from our tables and the printed ones, never typed in."""
     def pole(t, lab):
-        r = t[t.physics == lab]
+        r = t[t.physics.str.startswith(lab)].sort_values("frequency")
         return float(-r.real.iloc[0]) if len(r) else np.nan
+
+    def ref(rows, desc):
+        return [-r for f, r, d in rows if d == desc]
+    r1, r2 = ref(TABLE_7_1, "yaw")[0], ref(TABLE_7_2, "yaw")[0]
+    h1, h2 = ref(TABLE_7_1, "heave")[0], ref(TABLE_7_2, "heave")[0]
     heave_c, heave_i = pole(ours_clr, "heave"), pole(ours_id, "heave")
     yaw_c, yaw_i = pole(ours_clr, "yaw"), pole(ours_id, "yaw")
     swap = (f"printed heave/yaw labels look swapped: the printed 'yaw' moves with the inflow model "
-            f"(0.478 CLR -> 0.857 MFW ID, x1.79) as our heave does (x{heave_i / heave_c:.2f}) and the printed "
-            f"'heave' does not (x0.99) like our yaw (x{yaw_i / yaw_c:.2f}); our heave is the momentum-theory "
-            f"thrust-inflow damping Z_w (quasi-steady closed form {zw:.3f} 1/s), our yaw the rotor-torque "
-            f"damping over Izz (assumption, 127,400 kg m^2 with the rotors' polar inertia). Swapped, the "
-            f"CLR rows read {heave_c:.3f} vs 0.478 and {yaw_c:.4f} vs 0.0866")
+            f"({r1:.3g} CLR -> {r2:.3g} MFW ID, x{r2 / r1:.2f}) as our heave does (x{heave_i / heave_c:.2f}) and "
+            f"the printed 'heave' does not (x{h2 / h1:.2f}) like our yaw (x{yaw_i / yaw_c:.2f}); our heave is the "
+            f"momentum-theory thrust-inflow damping Z_w (quasi-steady closed form {zw:.3f} 1/s), our yaw the "
+            f"rotor-torque damping over Izz (assumption, {config.Izz:,.0f} kg m^2 with the rotors' polar "
+            f"inertia). Swapped, the CLR rows read {heave_c:.3f} vs {r1:.3g} and {yaw_c:.4f} vs {h1:.3g}")
+    spiral, pitch = ref(TABLE_7_1, "spiral")[0], ref(TABLE_7_1, "pitch")[0]
+    roll_o, pitch_o = pole(ours_clr, "roll subsidence"), pole(ours_clr, "pitch subsidence")
+    ph_prev = ours_prev[ours_prev.physics.str.startswith("phugoid")].frequency.mean()
+    ph_now = ours_clr[ours_clr.physics.str.startswith("phugoid")].frequency.mean()
+    flap_prev = ours_prev[ours_prev.physics == "regressive flap (roll)"].frequency.iloc[0]
     return {
         "heave": swap, "yaw": swap,
-        "phugoid": "hover phugoid set by the speed stability M_u/M_q and L_v/L_p of the rotor and X_u, Y_u "
-                   "(flapback of a stiff rotor + hub height); nearly independent of the inertias (0.24 with "
-                   "the previous 12,000/60,000 kg m^2 and I_b = 4,700 kg m^2, 0.27 now); not resolved: HeliUM's airfoil tables, elastic "
-                   "blades and fuselage/hub drag are not modelled here (simple linear lift, rigid blades)",
-        "roll subsidence": "printed 'spiral' 2.788 and 'pitch' 4.18: roll subsidence (Ixx ~ Iyy/4.4) should be "
-                           "the faster one, as ours is (p-dominated 4.65, q-dominated 2.60); Table 7.2 calls three "
-                           "real poles 'pitch' and none roll, so the printed labels are not physics-checked. "
-                           "Swapped labels give -7 % / +11 %",
+        "phugoid": f"hover phugoid set by the speed stability M_u/M_q and L_v/L_p of the rotor and X_u, Y_u "
+                   f"(flapback of a stiff rotor + hub height); nearly independent of the inertias ({ph_prev:.2f} "
+                   f"rad/s with the previous assumption values, {ph_now:.2f} now); not resolved: HeliUM's airfoil "
+                   f"tables, elastic blades and fuselage/hub drag are not modelled here (linear lift, rigid blades)",
+        "roll subsidence": f"printed 'spiral' {spiral:.4g} and 'pitch' {pitch:.4g}: the roll subsidence (Ixx = "
+                           f"Iyy/{config.Iyy / config.Ixx:.1f}) should be the faster one, as ours is (p-dominated "
+                           f"{roll_o:.3g}, q-dominated {pitch_o:.3g}); Table 7.2 calls three real poles 'pitch' and "
+                           f"none roll, so the printed labels are not physics-checked. Swapped labels give "
+                           f"{pitch_o / spiral - 1:+.0%} / {roll_o / pitch - 1:+.0%}",
         "pitch subsidence": "see roll subsidence: printed labels; with the identified model the pitch pole mixes "
                             "with the Pade/inflow states (Table 7.2 has three 'pitch' poles, we have one)",
-        "regressive flap": "flap-body mode: set by the hub stiffness (nu^2-1) I_b Omega^2 against the body "
-                           "inertia and by the Lock number (sensitivity.csv); fixed here by building the "
-                           "inertias up by hand and calibrating I_b (was 31.7 rad/s with Ixx = 12,000 kg m^2)",
+        "regressive flap": f"flap-body mode: set by the hub stiffness (nu^2-1) I_b Omega^2 against the body "
+                           f"inertia and by the Lock number (sensitivity.csv); previous assumption values put the "
+                           f"roll flap-body mode at {flap_prev:.1f} rad/s",
         "inflow": "identified-model states (Eq. 5.3 + Pade delays): realisation-dependent, not a physical mode "
-                  "(our Pade order 2 per delay gives 24 delay states, the dissertation 26)",
+                  "(Pade order 2 per delay here, the dissertation's realisation has 26 delay states)",
         "inflow (mean)": "mean-inflow poles 2 Omega Lbar11/M11-type: depend on the trim inflow (our blade "
                          "aerodynamics: linear lift, no tip loss) and on the climb interference",
-        "inflow (cyclic)": "cyclic inflow poles Omega Lbar22/M22 ~ 2.6 lam0 Omega: as for the mean inflow",
+        "inflow (cyclic)": "cyclic inflow poles Omega Lbar22/M22: as for the mean inflow",
     }
 
 
@@ -205,7 +228,9 @@ def main(out_dir="results/coaxial_hover_poles", with_sensitivity=True):
     ours_clr, tr_clr = pole_table(ClimbingLowerRotor(), config)
     ours_id, tr_id = pole_table(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE), config)
     ref1, ref2 = reference_table(TABLE_7_1), reference_table(TABLE_7_2, momentum_inflow=False)
-    reasons = _reasons(ours_clr, ours_id, heave_closed_form(tr_clr))
+    ours_prev, _ = pole_table(ClimbingLowerRotor(), previous_config(config))
+    ours_prev.to_csv(out / "poles_clr_previous_assumptions.csv", index=False)
+    reasons = _reasons(ours_clr, ours_id, ours_prev, config, heave_closed_form(tr_clr))
     expl = []
     fig = Figure(figsize=(9, 5), constrained_layout=True)
     ax = fig.subplots()
