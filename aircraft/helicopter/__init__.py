@@ -4,14 +4,23 @@
 
     Helicopter(config, inflow) ── trim(condition) ──► TrimResult
                                └─ linearize(trim) ──► control.StateSpace ─► modes(sys)
-                                                      └─ coupling_numerator(sys, "p", "delta_lat", {...})
+                                                      ├─ coupling_numerator(sys, "p", "delta_lat", {...})
+                                                      └─ classify_modes(sys) / flap_mode_damping(sys)
+    compare_bare_airframe({"Dynamic Climb": DynamicClimb(), ...}) ──► BareAirframeComparison
+    ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
 """
 from .mixing import PILOT_INPUTS, ROTOR_CONTROLS, mixing_matrix
 from .model import BODY_STATES, Helicopter, HelicopterSettings
 from .trim import TrimCondition, TrimError, TrimResult, trim
 from .linearize import default_steps, linearize, modes
 from .coupling import CouplingError, coupling_numerator, residualize
+from .mode_physics import classify_modes, flap_mode_damping, flap_mode_sensitivity, pair_modes
+from .responses import DEFAULT_RESPONSE_PAIRS, BareAirframeComparison, compare_bare_airframe
+from .rotor_stand import RotorStandError, ShaftFixedRotors
 
 __all__ = ["PILOT_INPUTS", "ROTOR_CONTROLS", "mixing_matrix", "BODY_STATES", "Helicopter",
            "HelicopterSettings", "TrimCondition", "TrimError", "TrimResult", "trim",
-           "default_steps", "linearize", "modes", "CouplingError", "coupling_numerator", "residualize"]
+           "default_steps", "linearize", "modes", "CouplingError", "coupling_numerator", "residualize",
+           "classify_modes", "flap_mode_damping", "flap_mode_sensitivity", "pair_modes",
+           "DEFAULT_RESPONSE_PAIRS", "BareAirframeComparison", "compare_bare_airframe",
+           "RotorStandError", "ShaftFixedRotors"]
