@@ -37,16 +37,17 @@ runs = run_sweeps(rotor, settings, FlightCondition(), sweeps + [doublet], trim={
 trim = runs["trim"]
 print(f"trim: C_T = {trim.outputs['CT']:.5f}, lam0 = {trim.outputs['lam0']:.5f}")
 
-# 3. non-parametric responses: chirp-z over composite windows, with coherence,
-#    of loads and inflow to each control; then lambda/C by joint input-output
-#    (Eq. 3.22): the inflow response to the loads the wake actually produced
+# 3. non-parametric responses of loads and inflow to each control, by chirp-z
+#    over composite windows, with coherence (1-30 rad/s: a 30 s sweep resolves
+#    down to 1 rad/s); then lambda/C by joint input-output (Eq. 3.22): the inflow
+#    response to the loads the wake actually produced
 responses = []
 for spec in sweeps:
     df = runs[spec.name]
     y = df[LOADS + INFLOW].to_numpy() - df[LOADS + INFLOW].iloc[0].to_numpy()
     responses.append(flightid.frequency_response(
         df["t"].to_numpy(), df[spec.control].to_numpy() - df[spec.control].iloc[0], y,
-        w_min=0.7, w_max=30.0, input_name=spec.control, output_names=LOADS + INFLOW))
+        w_min=1.0, w_max=30.0, input_name=spec.control, output_names=LOADS + INFLOW))
 measured = flightid.combine_responses(responses)
 lam_over_c = flightid.joint_input_output(measured.select(INFLOW), measured.select(LOADS))
 
@@ -65,7 +66,7 @@ reduction = flightid.reduce(structure, lam_over_c, frequency_ranges=(1.0, 25.0))
 fit = reduction.result
 print(f"J_ave = {fit.J_ave:.1f} (guideline < 100)")
 print(fit.parameters[["parameter", "value", "cramer_rao_pct", "insensitivity_pct"]].to_string(index=False))
-model = fit.model                             # a python-control StateSpace, loads in, inflow out
+model = fit.model      # python-control StateSpace, loads in, inflow out; delays as Pade states
 print(f"identified model: {model.nstates} states, inputs {list(model.input_labels)}")
 
 # 6. time-domain verification on the doublet (perturbations about the trim)

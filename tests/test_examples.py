@@ -23,7 +23,8 @@ def test_tour_rotor_to_identified_model(tmp_path, monkeypatch):
     ns = _run("rotor_to_identified_model.py", tmp_path, monkeypatch)
     fit, check = ns["fit"], ns["check"]
     assert ns["trim"].converged
-    assert fit.model.nstates == 3 and list(fit.model.input_labels) == ["CT", "CL", "CM"]
+    assert list(fit.model.input_labels) == ["CT", "CL", "CM"]
+    assert list(fit.model.output_labels) == ["lam0", "lam1s", "lam1c"]
     # a coarse wake and 30 s sweeps: the fit must still be a usable one (CIFER's
     # "acceptable" guideline is J_ave < 100) with Pitt-Peters signs (M11 > 0, L11 > 0)
     assert fit.J_ave < 100

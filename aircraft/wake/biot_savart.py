@@ -237,9 +237,23 @@ def segment_velocity(targets, seg_a, seg_b, gamma, rc, precision="double"):
 
 
 def segment_influence(targets, seg_a, seg_b, rc):
-    """Velocity per unit circulation, shape (M, N, 3) [1/m] (compiled kernel).
+    """Velocity per unit circulation of each segment at each target (compiled kernel).
 
     Used for the small bound/near-wake circulation system of the blades.
+
+    Parameters
+    ----------
+    targets : array_like, shape (M, 3)
+        Evaluation points [m].
+    seg_a, seg_b : array_like, shape (N, 3)
+        Segment start and end points [m].
+    rc : array_like, shape (N,) or scalar
+        Vatistas (n = 2) core radius [m].
+
+    Returns
+    -------
+    ndarray, shape (M, N, 3)
+        Induced velocity per unit circulation [1/m].
     """
     targets, seg_a, seg_b, _, rc = _check(targets, seg_a, seg_b, None, rc)
     return _segment_influence_numba(targets, seg_a, seg_b, rc)
@@ -250,6 +264,22 @@ def segment_velocity_numpy(targets, seg_a, seg_b, gamma, rc):
 
     Vectorised over the segments, looping over the targets (memory stays O(N));
     used to check the compiled kernel and as the benchmark baseline.
+
+    Parameters
+    ----------
+    targets : array_like, shape (M, 3)
+        Evaluation points [m].
+    seg_a, seg_b : array_like, shape (N, 3)
+        Segment start and end points [m].
+    gamma : array_like, shape (N,) or scalar
+        Segment circulation [m^2/s].
+    rc : array_like, shape (N,) or scalar
+        Vatistas (n = 2) core radius [m].
+
+    Returns
+    -------
+    ndarray, shape (M, 3)
+        Induced velocity [m/s].
     """
     targets, seg_a, seg_b, gamma, rc = _check(targets, seg_a, seg_b, gamma, rc)
     out = np.zeros((targets.shape[0], 3))
@@ -284,6 +314,11 @@ def core_radius(age, omega, rc0, delta, nu=1.5e-5):
         Turbulent (eddy) viscosity coefficient [-] (Squire's delta).
     nu : float
         Kinematic viscosity [m^2/s].
+
+    Returns
+    -------
+    ndarray
+        Core radius [m], shape of ``age``.
     """
     age = np.asarray(age, dtype=float)
     return np.sqrt(rc0 ** 2 + 4.0 * VATISTAS_ALPHA * delta * nu * np.maximum(age, 0.0) / omega)
