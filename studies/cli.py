@@ -21,6 +21,7 @@ Run it from the project's virtual environment: ``.venv/bin/rotorwake`` (after
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import inspect
 import sys
@@ -147,6 +148,38 @@ def _plan(study, argv):
     return minutes, [Path(o.format(out=out)) for o in outputs], note
 
 
+class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Shows the default of every option, also of those declared without help."""
+
+    def _format_action(self, action):
+        if not action.help and action.option_strings and action.default not in (None, argparse.SUPPRESS):
+            action.help = "default: %(default)s"
+        return super()._format_action(action)
+
+
+@contextlib.contextmanager
+def _help_shows_defaults(prog):
+    """While a study prints its --help, its parser shows each option's default.
+
+    The studies build their own parsers; rather than asking each to choose a
+    formatter, the command line makes ArgumentDefaultsHelpFormatter the default
+    for parsers created inside this block (help output only; restored after).
+    """
+    original, argv0 = argparse.ArgumentParser.__init__, sys.argv[0]
+
+    def init(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", _DefaultsFormatter)
+        original(self, *args, **kwargs)
+
+    argparse.ArgumentParser.__init__ = init
+    sys.argv[0] = prog     # the usage line then reads "rotorwake <command>"
+    try:
+        yield
+    finally:
+        argparse.ArgumentParser.__init__ = original
+        sys.argv[0] = argv0
+
+
 def run_study(name, argv, *, stream=sys.stderr):
     """Run one study through its ``main`` and write the manifests of its folders.
 
@@ -176,7 +209,10 @@ def run_study(name, argv, *, stream=sys.stderr):
     t0 = time.perf_counter()
     module = importlib.import_module(study.module)
     params = list(inspect.signature(module.main).parameters)
-    if params and params[0] == "argv":
+    if params and params[0] == "argv" and asks_help:
+        with _help_shows_defaults(f"rotorwake {name}"):
+            module.main(list(argv))
+    elif params and params[0] == "argv":
         module.main(list(argv))
     else:
         # studies whose main takes keyword options: the command line offers --out

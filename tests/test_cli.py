@@ -74,3 +74,15 @@ def test_unknown_command_is_an_error():
     with pytest.raises(SystemExit) as exc:
         cli.main(["no-such-study"])
     assert exc.value.code == 2
+
+
+def test_study_help_shows_each_option_with_its_default(capsys):
+    import argparse
+    before = argparse.ArgumentParser.__init__
+    with pytest.raises(SystemExit) as exc:
+        cli.main(["identification-demo", "--help"])
+    assert exc.value.code == 0
+    text = capsys.readouterr().out
+    assert "usage: rotorwake identification-demo" in text
+    assert "default: 0" in text and "default: results/identification_demo" in text
+    assert argparse.ArgumentParser.__init__ is before     # the help-only patch is undone
