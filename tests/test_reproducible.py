@@ -112,3 +112,20 @@ def test_round_off_perturbations_stay_within_the_cross_machine_tolerance(relativ
     # a flip; their averages must agree to the same tolerance, on the C_T scale
     for name in ("CL", "CM"):
         assert abs(other[name][late].mean() - ref[name][late].mean()) < CROSS_MACHINE_RTOL * ref.CT[late].mean()
+
+
+def test_wake_cache_never_serves_results_of_other_code(tmp_path, monkeypatch):
+    # The cache key includes a digest of the wake's source: with another digest
+    # (what any edit of aircraft/wake/*.py gives) the runs are recomputed, not
+    # served, and the recomputation is bit-identical to the first run.
+    import pandas as pd
+    from aircraft.wake import FlightCondition, SweepSpec, run_sweeps
+    from aircraft.wake import sweeps as sweeps_module
+    specs = [SweepSpec("theta0", kind="sine", amplitude=0.01, duration=0.3, w_min=5.0)]
+    args = (uh60_single_rotor(), WakeSettings(**TINY_WAKE), FlightCondition(), specs)
+    first = run_sweeps(*args, trim={"ct": 0.0061}, n_jobs=1, cache_dir=tmp_path, progress=False)
+    assert len(list(tmp_path.glob("*.pkl"))) == 2          # the run and the trim
+    monkeypatch.setattr(sweeps_module, "_wake_code_digest", lambda: "other code")
+    second = run_sweeps(*args, trim={"ct": 0.0061}, n_jobs=1, cache_dir=tmp_path, progress=False)
+    assert len(list(tmp_path.glob("*.pkl"))) == 4          # recomputed under new keys
+    pd.testing.assert_frame_equal(second["sine_theta0"], first["sine_theta0"], check_exact=True)
