@@ -75,7 +75,7 @@ STUDIES = {s.command: s for s in (
     Study("main", "studies.hover_control_comparison",
           "main job: hover control comparison, cases A/B/C (dissertation §7.5)", 2.0,
           outputs=("{out}/identification_demo", "{out}/hover_control_comparison"), default_out="results",
-          variants={"--identified=wake": (20.0, ("{out}/hover_control_comparison_wake",),
+          variants={"--identified=wake": (20.0, ("{out}/identification_demo", "{out}/hover_control_comparison_wake"),
                                           "identifies the 6-state inflow from our free wake first; "
                                           "wake runs cached under .cache/wake (about 6 min after)")}),
     Study("identification-demo", "studies.identification_demo",
