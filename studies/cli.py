@@ -135,6 +135,19 @@ def _option(argv, name, default):
     return value
 
 
+def _without_out(argv):
+    """``argv`` without its ``--out`` option(s)."""
+    kept, skip = [], False
+    for arg in argv:
+        if skip:
+            skip = False
+        elif arg == "--out":
+            skip = True
+        elif not arg.startswith("--out="):
+            kept.append(arg)
+    return kept
+
+
 def _plan(study, argv):
     """(minutes, results folders, cache note) of running ``study`` with ``argv``."""
     minutes, outputs, note = study.minutes, study.outputs, study.cached_note
@@ -222,10 +235,12 @@ def run_study(name, argv, *, stream=sys.stderr):
         module.main(out_dir=parser.parse_args(argv).out)
     wall = time.perf_counter() - t0
     from aircraft.provenance import write_manifest
-    settings = {"command": name, "argv": list(argv)}
+    # where the results go does not change them: --out stays out of the settings hash
+    settings = {"command": name, "options": _without_out(argv)}
     for folder in folders:
         if folder.is_dir():
-            write_manifest(folder, command=f"rotorwake {name}", settings=settings, wall_time_s=wall)
+            write_manifest(folder, command=f"rotorwake {name} " + " ".join(argv), settings=settings,
+                           wall_time_s=wall)
     return wall
 
 
