@@ -2,7 +2,8 @@
 
 Each run is cached on disk (``.cache/wake/<hash>.pkl``) keyed on a SHA-256 of
 every input (configuration, settings, flight condition, trim request, input
-signal and requested points), so repeating a study costs nothing.
+signal and requested points) and of the wake's own source code, so repeating a
+study costs nothing and a code change never serves an old result.
 """
 from __future__ import annotations
 
@@ -20,6 +21,20 @@ import pandas as pd
 __all__ = ["SweepSpec", "run_sweeps", "sweep_inputs"]
 
 _CACHE_VERSION = "wake-3"   # bump when the marching code changes results
+
+
+def _wake_code_digest():
+    """SHA-256 of the wake package's and the configurations' source files.
+
+    Part of every cache key: an entry computed by other marching code (even a
+    changed rounding, e.g. the Biot-Savart kernel) is never served, without
+    relying on anyone remembering to bump _CACHE_VERSION.
+    """
+    digest = hashlib.sha256()
+    here = Path(__file__).resolve().parent
+    for path in sorted(here.glob("*.py")) + [here.parent / "configs.py"]:
+        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()
 
 
 @dataclass(frozen=True)
@@ -153,7 +168,7 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
         raise ValueError(f"SweepSpec names must be unique, got {names}")
     trim = dict(trim or {})
     points = dict(points or {})
-    base = {"v": _CACHE_VERSION, "config": repr(config), "settings": asdict(settings),
+    base = {"v": _CACHE_VERSION, "code": _wake_code_digest(), "config": repr(config), "settings": asdict(settings),
             "flight": asdict(flight), "trim": trim,
             "points": {k: list(map(float, v)) for k, v in points.items()}}
     keys = {s.name: _key({**base, "spec": asdict(s)}) for s in specs}

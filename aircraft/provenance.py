@@ -1,0 +1,292 @@
+"""Provenance of computed results: manifests, and a check that says when they are stale.
+
+Every results folder written through the ``rotorwake`` command line carries a
+``manifest.json``:
+
+* ``code``: package version, ``git describe --always --dirty`` and a dirty flag;
+* ``sources``: the SHA-256 of every project module the run imported (taken from
+  ``sys.modules`` after the run, so it is exactly the code the numbers came from,
+  defaults and constants included);
+* ``settings`` and ``settings_hash``: the command and its explicit options;
+* ``date`` (UTC, ISO 8601), ``wall_time_s`` [s], ``machine`` (cores, platform,
+  Python / numpy / numba versions);
+* ``files``: the SHA-256 of every file in the folder.
+
+:func:`check_results` re-hashes those modules and files: a folder is *stale*
+when a module it was computed with has changed since, and *modified* when one of
+its files no longer matches the manifest. ``rotorwake check-results`` (and
+``make check-results``) prints that table and fails when anything is not fresh.
+
+Module paths are stored relative to the project root, so a manifest written on
+one machine is checked on another.
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+import os
+import platform
+import subprocess
+import sys
+from pathlib import Path
+
+__all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "ResultsManifestError", "code_version",
+           "settings_hash", "file_sha256", "imported_sources", "write_manifest", "read_manifest",
+           "check_results"]
+
+#: File name of the manifest in each results folder.
+MANIFEST_NAME = "manifest.json"
+#: Packages whose imported modules are recorded (the project's own code).
+PROJECT_PACKAGES = ("flightid", "aircraft", "controllers", "studies")
+# bookkeeping modules that cannot change a number: not recorded
+_NOT_RESULTS_CODE = ("aircraft/provenance.py", "studies/cli.py")
+_SCHEMA = 1
+
+
+class ResultsManifestError(ValueError):
+    """Raised for a missing, unreadable or wrong-schema ``manifest.json``."""
+
+
+def _project_root():
+    return Path(__file__).resolve().parents[1]
+
+
+def file_sha256(path):
+    """SHA-256 hex digest of a file's bytes.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        File to hash.
+
+    Returns
+    -------
+    str
+        64 hexadecimal characters.
+    """
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def code_version(root=None):
+    """Version of the code: package version, ``git describe`` and dirty flag.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path, optional
+        Project root (default: the folder above this package).
+
+    Returns
+    -------
+    dict
+        ``{"package": str | None, "git": str | None, "dirty": bool | None}``;
+        the git entries are None outside a git checkout.
+    """
+    root = Path(root) if root is not None else _project_root()
+    try:
+        from importlib.metadata import PackageNotFoundError, version
+        try:
+            package = version("rotorwake-id")
+        except PackageNotFoundError:
+            package = None
+    except ImportError:   # pragma: no cover - Python >= 3.8 always has it
+        package = None
+    try:
+        described = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=root,
+                                   capture_output=True, text=True, timeout=10, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        described = None
+    dirty = None if described is None else described.endswith("-dirty")
+    return {"package": package, "git": described, "dirty": dirty}
+
+
+def settings_hash(settings):
+    """SHA-256 of the canonical JSON form of ``settings``.
+
+    Parameters
+    ----------
+    settings : dict
+        JSON-serialisable settings (keys are sorted before hashing, so order does
+        not matter).
+
+    Returns
+    -------
+    str
+        64 hexadecimal characters.
+
+    Raises
+    ------
+    TypeError
+        If ``settings`` is not JSON-serialisable.
+    """
+    text = json.dumps(settings, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def imported_sources(root=None, packages=PROJECT_PACKAGES):
+    """SHA-256 of each project module now in ``sys.modules``.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path, optional
+        Project root; module files must lie under it (an installed, non-editable
+        copy elsewhere is skipped).
+    packages : sequence of str
+        Top-level package names to record.
+
+    Returns
+    -------
+    dict
+        ``{relative posix path: sha256}``, sorted by path.
+    """
+    root = (Path(root) if root is not None else _project_root()).resolve()
+    found = {}
+    for name, module in list(sys.modules.items()):
+        if name.split(".")[0] not in packages:
+            continue
+        path = getattr(module, "__file__", None)
+        if not path:
+            continue
+        path = Path(path).resolve()
+        try:
+            rel = path.relative_to(root)
+        except ValueError:
+            continue
+        if path.is_file() and rel.as_posix() not in _NOT_RESULTS_CODE:
+            found[rel.as_posix()] = file_sha256(path)
+    return dict(sorted(found.items()))
+
+
+def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources=None):
+    """Write ``manifest.json`` into a results folder.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        Results folder (must exist; every file in it is hashed).
+    command : str
+        What produced it, e.g. ``"rotorwake wake-identification"``.
+    settings : dict
+        JSON-serialisable settings of the run (hashed into ``settings_hash``).
+    wall_time_s : float
+        Wall-clock time of the run [s].
+    root : str or pathlib.Path, optional
+        Project root (default: the folder above this package).
+    sources : dict, optional
+        ``{path: sha256}`` of the code used; default :func:`imported_sources` now.
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the manifest written.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``folder`` does not exist.
+    """
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise FileNotFoundError(f"results folder {folder} does not exist")
+    import numpy
+    try:
+        import numba
+        numba_version = numba.__version__
+    except ImportError:   # pragma: no cover - a dependency
+        numba_version = None
+    files = {p.name: file_sha256(p) for p in sorted(folder.iterdir())
+             if p.is_file() and p.name != MANIFEST_NAME}
+    manifest = {
+        "schema": _SCHEMA,
+        "command": command,
+        "settings": settings,
+        "settings_hash": settings_hash(settings),
+        "code": code_version(root),
+        "sources": sources if sources is not None else imported_sources(root),
+        "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "wall_time_s": round(float(wall_time_s), 2),
+        "machine": {"cores": os.cpu_count(), "platform": platform.platform(),
+                    "python": platform.python_version(), "numpy": numpy.__version__,
+                    "numba": numba_version},
+        "files": files,
+    }
+    path = folder / MANIFEST_NAME
+    path.write_text(json.dumps(manifest, indent=2, sort_keys=False) + "\n")
+    return path
+
+
+def read_manifest(folder):
+    """Read and validate ``folder/manifest.json``.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        Results folder.
+
+    Returns
+    -------
+    dict
+        The manifest.
+
+    Raises
+    ------
+    ResultsManifestError
+        If the manifest is missing, is not JSON, or has another schema.
+    """
+    path = Path(folder) / MANIFEST_NAME
+    if not path.is_file():
+        raise ResultsManifestError(f"{path} is missing: results not written by `rotorwake`")
+    try:
+        manifest = json.loads(path.read_text())
+    except json.JSONDecodeError as exc:
+        raise ResultsManifestError(f"{path} is not valid JSON: {exc}") from exc
+    if manifest.get("schema") != _SCHEMA:
+        raise ResultsManifestError(f"{path} has schema {manifest.get('schema')!r}, expected {_SCHEMA}")
+    return manifest
+
+
+def check_results(results_root="results", root=None):
+    """Say, folder by folder, whether committed results are what the code gives now.
+
+    Parameters
+    ----------
+    results_root : str or pathlib.Path
+        Folder holding one sub-folder per study.
+    root : str or pathlib.Path, optional
+        Project root the manifests' module paths are relative to.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per results folder: ``folder``, ``status`` (``"fresh"``,
+        ``"stale"``: a module it was computed with changed or is gone,
+        ``"modified"``: a file differs from the manifest, ``"no manifest"``),
+        ``date`` of the run and ``detail`` (which modules or files).
+    """
+    import pandas as pd
+    root = Path(root) if root is not None else _project_root()
+    rows = []
+    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
+        try:
+            manifest = read_manifest(folder)
+        except ResultsManifestError as exc:
+            rows.append({"folder": folder.name, "status": "no manifest", "date": None, "detail": str(exc)})
+            continue
+        changed = [rel for rel, digest in manifest["sources"].items()
+                   if not (root / rel).is_file() or file_sha256(root / rel) != digest]
+        edited = [name for name, digest in manifest["files"].items()
+                  if not (folder / name).is_file() or file_sha256(folder / name) != digest]
+        extra = sorted(p.name for p in folder.iterdir()
+                       if p.is_file() and p.name != MANIFEST_NAME and p.name not in manifest["files"])
+        if changed:
+            status, detail = "stale", "code changed since the run: " + ", ".join(changed)
+        elif edited or extra:
+            status, detail = "modified", "files differ from the manifest: " + ", ".join(edited + extra)
+        else:
+            status, detail = "fresh", f"{manifest['command']} ({manifest['code']['git']})"
+        rows.append({"folder": folder.name, "status": status, "date": manifest["date"], "detail": detail})
+    return pd.DataFrame(rows, columns=["folder", "status", "date", "detail"])

@@ -1,0 +1,303 @@
+"""The ``rotorwake`` command line: the main job, each study, and the results tools.
+
+::
+
+    rotorwake --help                       list of commands (fast: nothing heavy imported)
+    rotorwake main [options]               hover control comparison (``make study``)
+    rotorwake <study> [options]            one study; ``rotorwake <study> --help`` for its options
+    rotorwake results                      regenerate every committed results folder
+    rotorwake check-results                say which committed results are stale
+
+Each study command calls that study's own ``main`` with the remaining options, so
+the studies keep their own option parsers; the heavy imports (numba, CasADi,
+python-control) happen only after the command line has been parsed. Every run
+writes ``manifest.json`` into each results folder it produced (see
+:mod:`aircraft.provenance`). A run longer than a minute says so, and about how
+long, before it starts.
+
+Run it from the project's virtual environment: ``.venv/bin/rotorwake`` (after
+``make study`` or ``make test``), or ``source .venv/bin/activate`` first.
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib
+import inspect
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["Study", "STUDIES", "main"]
+
+
+@dataclass(frozen=True)
+class Study:
+    """One command of the ``rotorwake`` command line.
+
+    Parameters
+    ----------
+    command : str
+        Sub-command name.
+    module : str
+        Study module whose ``main`` runs it.
+    summary : str
+        One line for ``rotorwake --help``.
+    minutes : float
+        Rough wall time on 2 cores with an empty cache [min].
+    outputs : tuple of str
+        Results folders written, relative to ``--out`` (``{out}`` is the option's
+        value; the default below applies when it is not given).
+    default_out : str
+        Default of the study's ``--out`` option.
+    cached_note : str
+        What makes a second run faster, if anything.
+    in_results : bool
+        Whether ``rotorwake results`` regenerates it.
+    variants : dict
+        ``{"--option=value": (minutes, outputs, cached_note)}`` for options that
+        change the run time and the folders written.
+    """
+
+    command: str
+    module: str
+    summary: str
+    minutes: float
+    outputs: tuple = ("{out}",)
+    default_out: str = ""
+    cached_note: str = ""
+    in_results: bool = True
+    variants: dict = field(default_factory=dict)
+
+
+STUDIES = {s.command: s for s in (
+    Study("main", "studies.hover_control_comparison",
+          "main job: hover control comparison, cases A/B/C (dissertation §7.5)", 2.0,
+          outputs=("{out}/identification_demo", "{out}/hover_control_comparison"), default_out="results",
+          variants={"--identified=wake": (20.0, ("{out}/identification_demo", "{out}/hover_control_comparison_wake"),
+                                          "identifies the 6-state inflow from our free wake first; "
+                                          "wake runs cached under .cache/wake (about 6 min after)")}),
+    Study("identification-demo", "studies.identification_demo",
+          "identification pipeline on an embedded 6-state truth (sweeps -> fit -> reduce -> verify)", 0.5,
+          default_out="results/identification_demo", in_results=False),
+    Study("wake-identification", "studies.wake_identification",
+          "3-state inflow model of the single rotor identified from our free wake (Tables 4.1-4.2)", 3.0,
+          default_out="results/wake_identification", cached_note="wake runs cached under .cache/wake"),
+    Study("coaxial-wake-identification", "studies.coaxial_wake_identification",
+          "6-state coaxial inflow model identified from our free wake (Eq. 5.3)", 14.0,
+          default_out="results/coaxial_wake_identification",
+          cached_note="wake runs cached under .cache/wake (about 6 min after)"),
+    Study("coaxial-hover-poles", "studies.coaxial_hover_poles",
+          "coaxial aircraft hover poles with two inflow models (Tables 7.1/7.2)", 0.5,
+          default_out="results/coaxial_hover_poles"),
+    Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
+          "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
+          default_out="results/pitt_peters_hover_check"),
+)}
+# identification_demo is written by `main` as its stage 1; `results` does not rerun it
+
+
+def _minutes(minutes):
+    return f"about {minutes:.0f} min" if minutes >= 1 else f"under {max(1, round(minutes * 60, -1)):.0f} s"
+
+
+def _parser():
+    parser = argparse.ArgumentParser(
+        prog="rotorwake", description="State-space rotor wake identification and coaxial flight "
+                                      "control design (times: wall time on 2 cores).",
+        epilog="`rotorwake <command> --help` lists a command's options and defaults. Every run writes "
+               "manifest.json (code version, settings hash, date, wall time, cores) into each "
+               "results folder. Run from the project's venv: .venv/bin/rotorwake.")
+    sub = parser.add_subparsers(dest="command", metavar="command", required=True)
+    for name, study in STUDIES.items():
+        # add_help=False: `--help` is passed on to the study's own parser
+        sub.add_parser(name, add_help=False, help=f"{study.summary} ({_minutes(study.minutes)})")
+    res = sub.add_parser("results", help="regenerate every committed results folder (about 20 min)",
+                         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    res.add_argument("--only", nargs="+", choices=[n for n, s in STUDIES.items() if s.in_results],
+                     help="regenerate only these (default: all)")
+    res.add_argument("--stale", action="store_true", help="regenerate only folders check-results calls stale")
+    chk = sub.add_parser("check-results", help="say which committed results are stale",
+                         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    chk.add_argument("--results", default="results", help="folder with one sub-folder per study")
+    return parser
+
+
+def _option(argv, name, default):
+    """Value of ``--name value`` / ``--name=value`` in ``argv`` (the last one wins)."""
+    value = default
+    for k, arg in enumerate(argv):
+        if arg == name and k + 1 < len(argv):
+            value = argv[k + 1]
+        elif arg.startswith(name + "="):
+            value = arg.split("=", 1)[1]
+    return value
+
+
+def _without_out(argv):
+    """``argv`` without its ``--out`` option(s)."""
+    kept, skip = [], False
+    for arg in argv:
+        if skip:
+            skip = False
+        elif arg == "--out":
+            skip = True
+        elif not arg.startswith("--out="):
+            kept.append(arg)
+    return kept
+
+
+def _plan(study, argv):
+    """(minutes, results folders, cache note) of running ``study`` with ``argv``."""
+    minutes, outputs, note = study.minutes, study.outputs, study.cached_note
+    for flag, (v_minutes, v_outputs, v_note) in study.variants.items():
+        key, value = flag.split("=")
+        if _option(argv, key, None) == value:
+            minutes, outputs, note = v_minutes, v_outputs, v_note
+    if "--skip-identification" in argv:
+        outputs = tuple(o for o in outputs if not o.endswith("identification_demo"))
+    out = _option(argv, "--out", study.default_out)
+    return minutes, [Path(o.format(out=out)) for o in outputs], note
+
+
+class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Shows the default of every option, also of those declared without help."""
+
+    def _format_action(self, action):
+        if not action.help and action.option_strings and action.default not in (None, argparse.SUPPRESS):
+            action.help = "default: %(default)s"
+        return super()._format_action(action)
+
+
+@contextlib.contextmanager
+def _help_shows_defaults(prog):
+    """While a study prints its --help, its parser shows each option's default.
+
+    The studies build their own parsers; rather than asking each to choose a
+    formatter, the command line makes ArgumentDefaultsHelpFormatter the default
+    for parsers created inside this block (help output only; restored after).
+    """
+    original, argv0 = argparse.ArgumentParser.__init__, sys.argv[0]
+
+    def init(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", _DefaultsFormatter)
+        original(self, *args, **kwargs)
+
+    argparse.ArgumentParser.__init__ = init
+    sys.argv[0] = prog     # the usage line then reads "rotorwake <command>"
+    try:
+        yield
+    finally:
+        argparse.ArgumentParser.__init__ = original
+        sys.argv[0] = argv0
+
+
+def run_study(name, argv, *, stream=sys.stderr):
+    """Run one study through its ``main`` and write the manifests of its folders.
+
+    Parameters
+    ----------
+    name : str
+        Command name, a key of :data:`STUDIES`.
+    argv : list of str
+        Options passed on to the study.
+    stream : file-like
+        Where the long-run notice goes.
+
+    Returns
+    -------
+    float
+        Wall time [s].
+    """
+    study = STUDIES[name]
+    minutes, folders, note = _plan(study, argv)
+    asks_help = any(a in ("-h", "--help") for a in argv)
+    if minutes >= 1 and not asks_help:
+        print(f"[rotorwake] {name}: a long run, {_minutes(minutes)} on 2 cores"
+              + (f"; {note}" if note else "") + ".", file=stream, flush=True)
+    if asks_help:
+        print(f"rotorwake {name}: {study.summary}\n  {_minutes(minutes)} on 2 cores; writes "
+              + ", ".join(str(f) for f in folders) + " with manifest.json\n")
+    t0 = time.perf_counter()
+    module = importlib.import_module(study.module)
+    params = list(inspect.signature(module.main).parameters)
+    if params and params[0] == "argv" and asks_help:
+        with _help_shows_defaults(f"rotorwake {name}"):
+            module.main(list(argv))
+    elif params and params[0] == "argv":
+        module.main(list(argv))
+    else:
+        # studies whose main takes keyword options: the command line offers --out
+        parser = argparse.ArgumentParser(prog=f"rotorwake {name}", description=study.summary,
+                                         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        parser.add_argument("--out", default=study.default_out, help="results folder")
+        module.main(out_dir=parser.parse_args(argv).out)
+    wall = time.perf_counter() - t0
+    from aircraft.provenance import write_manifest
+    # where the results go does not change them: --out stays out of the settings hash
+    settings = {"command": name, "options": _without_out(argv)}
+    for folder in folders:
+        if folder.is_dir():
+            write_manifest(folder, command=f"rotorwake {name} " + " ".join(argv), settings=settings,
+                           wall_time_s=wall)
+    return wall
+
+
+def _check(results):
+    from aircraft.provenance import check_results
+    table = check_results(results)
+    if table.empty:
+        print(f"no results folders under {results}/")
+        return 1
+    import pandas as pd
+    with pd.option_context("display.max_colwidth", 90, "display.width", 200):
+        print(table.to_string(index=False))
+    bad = table[table.status != "fresh"]
+    if len(bad):
+        print(f"\n{len(bad)} of {len(table)} results folders are not fresh: run `make results` "
+              "(or `rotorwake results --stale`) and commit them.")
+        return 1
+    print(f"\nall {len(table)} results folders are what the current code produces")
+    return 0
+
+
+def main(argv=None):
+    """Entry point of the ``rotorwake`` console script.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command line without the program name (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status (0: success).
+    """
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args, rest = _parser().parse_known_args(argv)
+    if args.command in STUDIES:
+        run_study(args.command, rest)
+        return 0
+    if rest:
+        _parser().error(f"unrecognised arguments: {' '.join(rest)}")
+    if args.command == "check-results":
+        return _check(args.results)
+    # results: regenerate every committed folder at its default settings
+    names = args.only or [n for n, s in STUDIES.items() if s.in_results]
+    if args.stale:
+        from aircraft.provenance import check_results
+        table = check_results("results")
+        stale = {row.folder for row in table.itertuples() if row.status != "fresh"}
+        names = [n for n in names if any(f.name in stale for f in _plan(STUDIES[n], [])[1])]
+    total = sum(STUDIES[n].minutes for n in names)
+    print(f"[rotorwake] results: {', '.join(names) or 'nothing to do'} ({_minutes(total)} on 2 cores)",
+          file=sys.stderr, flush=True)
+    for name in names:
+        run_study(name, [])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
