@@ -8,10 +8,12 @@
 """
 from .mixing import PILOT_INPUTS, ROTOR_CONTROLS, mixing_matrix
 from .model import BODY_STATES, Helicopter, HelicopterSettings
-from .trim import TrimCondition, TrimError, TrimResult, trim
-from .linearize import default_steps, linearize, modes
+from .trim import TrimCondition, TrimError, TrimInputError, TrimResult, trim
+from .linearize import (LinearizeInputError, NotAtTrimError, NotAtTrimWarning, default_steps,
+                        linearize, modes, trim_derivatives)
 from .coupling import CouplingError, coupling_numerator, residualize
 
 __all__ = ["PILOT_INPUTS", "ROTOR_CONTROLS", "mixing_matrix", "BODY_STATES", "Helicopter",
-           "HelicopterSettings", "TrimCondition", "TrimError", "TrimResult", "trim",
-           "default_steps", "linearize", "modes", "CouplingError", "coupling_numerator", "residualize"]
+           "HelicopterSettings", "TrimCondition", "TrimError", "TrimInputError", "TrimResult", "trim",
+           "default_steps", "linearize", "modes", "trim_derivatives", "LinearizeInputError",
+           "NotAtTrimError", "NotAtTrimWarning", "CouplingError", "coupling_numerator", "residualize"]
