@@ -104,8 +104,23 @@ def residualize(sys, cutoff):
     design a plant without the far-off dynamics (e.g. the unstable high-frequency
     poles a coupling numerator inherits from non-minimum-phase zeros of the
     constraining loops, ~100 rad/s for this hingeless coaxial).
+
+    Raises
+    ------
+    CouplingError
+        ``sys`` is not a StateSpace, has non-finite matrices, or ``cutoff`` is not
+        a positive finite frequency [rad/s].
     """
+    import math
+    import numbers
     from scipy.linalg import schur, solve_sylvester
+    if not isinstance(sys, control.StateSpace):
+        raise CouplingError(f"sys must be a control.StateSpace, got {type(sys).__name__}")
+    if isinstance(cutoff, bool) or not isinstance(cutoff, numbers.Real) or not math.isfinite(cutoff) \
+            or cutoff <= 0:
+        raise CouplingError(f"cutoff must be a positive finite frequency [rad/s], got {cutoff!r}")
+    if not all(np.all(np.isfinite(np.asarray(m))) for m in (sys.A, sys.B, sys.C, sys.D)):
+        raise CouplingError("sys matrices contain NaN or infinite values")
     a, b, c, d = (np.asarray(m, float) for m in (sys.A, sys.B, sys.C, sys.D))
     t, z, n_slow = schur(a, output="real", sort=lambda re, im: np.hypot(re, im) < cutoff)
     if n_slow == a.shape[0]:

@@ -249,7 +249,7 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     for name, value, cls in (("config", config, AircraftConfig), ("settings", settings, WakeSettings),
                              ("flight", flight, FlightCondition)):
         if not isinstance(value, cls):
-            raise TypeError(f"{name} must be a {cls.__name__}, got {type(value).__name__}")
+            raise TypeError(f"{name} must be an aircraft {cls.__name__}, got {type(value).__name__}")
     if isinstance(specs, SweepSpec):
         specs = [specs]
     specs = list(specs)

@@ -402,7 +402,7 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         if raise_on_failure or not history or not np.all(np.isfinite(res)):
             worst = ", ".join(f"{k} = {v:.3g}" for k, v in residuals.items())
             raise WakeTrimError(f"wake trim failed: {failure} (tol {tol:g}); residuals: {worst}. "
-                                f"Controls reached: { {k: round(v, 5) for k, v in result.controls.items()} } rad",
+                                f"Controls reached: { {k: round(float(v), 5) for k, v in result.controls.items()} } rad",
                                 result, residuals)
         # unconverged but finite: returned on request (converged=False) for
         # inspection; run_sweeps refuses to start from it
