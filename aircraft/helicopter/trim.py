@@ -139,8 +139,9 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     max_iter : int
         Newton polishing iterations after Levenberg-Marquardt (>= 1).
     max_nfev : int, optional
-        Model evaluations allowed to Levenberg-Marquardt; default ``40 (n + 1)``
-        for ``n`` unknowns (trims that converge use 70-250, measured).
+        Model evaluations (:meth:`Helicopter.derivatives` calls, finite-difference
+        Jacobians included) allowed to the whole trim; default ``50 (n + 1)`` for
+        ``n`` unknowns, ~1,000 (trims that converge use 70-250, measured).
     max_time : float or None
         Wall-clock budget [s] of the whole trim; None: only the evaluation
         budgets bound it.
@@ -235,6 +236,7 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     keep = list(range(6)) + [9 + 8 * k + 4 + j for k in range(nrot) for j in range(4)] \
         + list(range(heli.n_rigid, heli.n_states))
     refused = {"count": 0, "last": None}
+    evaluations = {"n": 0, "budget": None}
 
     def residual(z):
         x, pilot = unpack(z)
@@ -246,7 +248,10 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
         # through the disk): a large residual there makes it step back instead of
         # dying with the inflow model's error; a spent budget stops it
         if max_time is not None and time.perf_counter() - t_start > max_time:
-            raise _BudgetExceeded
+            raise _BudgetExceeded(f"the time budget max_time = {max_time:g} s ran out")
+        evaluations["n"] += 1
+        if evaluations["budget"] is not None and evaluations["n"] > evaluations["budget"]:
+            raise _BudgetExceeded(f"the evaluation budget max_nfev = {evaluations['budget']} ran out")
         try:
             r = residual(z)
         except InflowError as err:
@@ -290,18 +295,27 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
                         f"largest residuals: {worst}{extra}", worst)
 
     n_unknowns = z0.size
-    budget = max_nfev if max_nfev is not None else 40 * (n_unknowns + 1)
+    budget = max_nfev if max_nfev is not None else 50 * (n_unknowns + 1)
+    evaluations["budget"] = budget
+    best_z = {"z": z0, "r": np.inf}
+
+    def tracked(z):
+        r = guarded(z)
+        if np.max(np.abs(r)) < best_z["r"]:
+            best_z["z"], best_z["r"] = np.array(z, float), float(np.max(np.abs(r)))
+        return r
+
     try:
-        sol = least_squares(guarded, z0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+        sol = least_squares(tracked, z0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                             max_nfev=budget)
-    except _BudgetExceeded:
-        fail(f"the time budget max_time = {max_time:g} s ran out in Levenberg-Marquardt", z0)
+    except _BudgetExceeded as why:
+        fail(f"{why} in Levenberg-Marquardt", best_z["z"])
     z = sol.x
     # Newton polishing with a central-difference Jacobian; it stops when it
     # stalls (three steps without halving the residual) instead of running on
-    best = np.max(np.abs(guarded(z)))
     stalled = 0
     try:
+        best = np.max(np.abs(guarded(z)))
         for _ in range(max_iter):
             r = guarded(z)
             if np.max(np.abs(r)) < tol or stalled >= 3:
@@ -316,17 +330,18 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
             now = np.max(np.abs(guarded(z)))
             stalled = stalled + 1 if now > 0.5 * best else 0
             best = min(best, now)
-    except _BudgetExceeded:
-        fail(f"the time budget max_time = {max_time:g} s ran out in Newton polishing", z)
+    except _BudgetExceeded as why:
+        fail(f"{why} in Newton polishing", best_z["z"])
     try:
         r = residual(z)
     except InflowError as err:
-        fail(f"the last iterate is outside the inflow model's domain ({err})", z)
+        fail(f"the last iterate is outside the inflow model's domain ({err}); residuals at the "
+             "best iterate", best_z["z"])
     x, pilot = unpack(z)
     u = _controls(heli, pilot, condition)
     if not np.all(np.isfinite(r)) or np.max(np.abs(r)) > tol:
-        fail(f"no solution within {budget} Levenberg-Marquardt evaluations and {max_iter} "
-             "Newton steps", z)
+        fail(f"no solution within {evaluations['n']} model evaluations (budget {budget}) and "
+             f"{max_iter} Newton steps", z)
     _, extra = heli.evaluate(x, u)
     loads = {n: float(v) for n, v in zip(heli.inflow.load_names, extra["loads"])}
     loads.update({k: float(v) for k, v in extra.items() if k.startswith(("torque", "CQ"))})
