@@ -17,10 +17,9 @@ import hashlib
 import json
 import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, asdict, field
+from dataclasses import dataclass, asdict
 
 import numpy as np
-import pandas as pd
 
 from .._validation import real as _real
 from .cache import WakeCache, WakeCacheError, _finite_tree, check_finite_frame, resolve_cache_dir

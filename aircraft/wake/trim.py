@@ -362,6 +362,13 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         if max_time is not None and time.perf_counter() - t_start > max_time:
             failure = f"the time budget max_time = {max_time:g} s ran out after {it} iterations"
             break
+        # a trim running away (residual 30x its best for two iterations in a row)
+        # will not come back within max_iter: stop instead of marching on
+        worst_recent = min(h["residual"] for h in history[-2:])
+        if it >= 4 and worst_recent > 30.0 * min(h["residual"] for h in history):
+            failure = (f"the trim is diverging (residual {history[-1]['residual']:.3g} at "
+                       f"iteration {it}, best {min(h['residual'] for h in history):.3g})")
+            break
         if it == max_iter:
             break
         if jacobian == "fd" and (J is None or np.abs(x - x_jac).max() > fd_refresh
