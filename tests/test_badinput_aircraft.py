@@ -13,9 +13,9 @@ import pytest
 from aircraft import ConfigError, PropellerConfig, coaxial_compound, uh60_single_rotor
 from aircraft.helicopter import (CouplingError, Helicopter, HelicopterSettings, LinearizeInputError,
                                  NotAtTrimError, NotAtTrimWarning, TrimCondition, TrimError,
-                                 TrimInputError, coupling_numerator, linearize, residualize, trim,
-                                 trim_derivatives)
-from aircraft.inflow import ClimbingLowerRotor, PittPeters
+                                 TrimInputError, coupling_numerator, default_steps, linearize, modes,
+                                 residualize, trim, trim_derivatives)
+from aircraft.inflow import ClimbingLowerRotor, DynamicClimb, IsolatedRotors, PittPeters
 from aircraft.wake import (FlightCondition, FreeVortexWake, SweepSpec, SweepSpecError, WakeInputError,
                            WakeSettings, WakeSettingsError, WakeTrimError, run_sweeps)
 
@@ -232,11 +232,13 @@ def test_trim_condition_rejects(kwargs, match):
         TrimCondition(**kwargs)
 
 
-def test_thirty_times_the_weight_fails_as_a_trim_error_before_any_solving():
-    # issue 13: this spent 150 s and raised InflowError; now a TrimError from the
-    # blade-loading check, with no model evaluation at all (measured < 1 ms)
+@pytest.mark.parametrize("inflow", [ClimbingLowerRotor, DynamicClimb, IsolatedRotors])
+def test_thirty_times_the_weight_fails_as_a_trim_error_before_any_solving(inflow):
+    # issue 13: this spent 104-150 s and raised InflowError or a bare TrimError;
+    # now a TrimError from the blade-loading check, with no model evaluation at
+    # all (measured < 1 ms)
     cfg = coaxial_compound()
-    heli = Helicopter(dataclasses.replace(cfg, mass=30 * cfg.mass), ClimbingLowerRotor(), FAST)
+    heli = Helicopter(dataclasses.replace(cfg, mass=30 * cfg.mass), inflow(), FAST)
     count = Counting(heli)
     with pytest.raises(TrimError, match=r"blade loading C_T/sigma = 2.2\d on rotor 'U', above the 0.25"):
         trim(heli)
@@ -291,6 +293,17 @@ def test_linearize_refuses_a_point_that_is_not_a_trim(uh60_trim):
 def test_linearize_rejects(uh60_trim, kwargs, match):
     with pytest.raises(LinearizeInputError, match=match):
         linearize(uh60_trim, **{"inputs": "rotor", **kwargs})
+
+
+def test_modes_and_default_steps_reject(uh60_trim):
+    with pytest.raises(LinearizeInputError, match="sys must be a control.StateSpace"):
+        modes(control.tf([1], [1, 1]))
+    with pytest.raises(LinearizeInputError, match="n_dominant must be an integer >= 1"):
+        modes(control.ss([[-1.0]], [[1.0]], [[1.0]], [[0.0]]), n_dominant=0)
+    with pytest.raises(LinearizeInputError, match="sys.A must be a non-empty matrix of finite values"):
+        modes(control.ss([[np.nan]], [[1.0]], [[1.0]], [[0.0]]))
+    with pytest.raises(LinearizeInputError, match="scale must be finite"):
+        default_steps(uh60_trim.helicopter, NAN)
 
 
 def test_linearize_needs_a_trim_result(uh60_trim):

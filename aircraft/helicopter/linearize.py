@@ -60,6 +60,7 @@ def trim_derivatives(trim_result):
 def default_steps(heli, scale=1.0):
     """Absolute perturbation per state [SI]: velocities 1e-3 m/s, rates 1e-4 rad/s,
     angles 1e-4 rad, flap 1e-5 rad, flap rates 1e-4 rad/s, inflow 1e-6; times ``scale``."""
+    scale = _real(LinearizeInputError, "scale", scale, positive=True)
     h = np.empty(heli.n_states)
     h[0:3], h[3:6], h[6:9] = 1e-3, 1e-4, 1e-4
     for k in range(len(heli.rotors)):
@@ -159,7 +160,13 @@ def modes(sys, n_dominant=3) -> pd.DataFrame:
 
     One row per real pole or complex pair (positive imaginary part shown).
     """
+    if not isinstance(sys, control.StateSpace):
+        raise LinearizeInputError(f"sys must be a control.StateSpace, got {type(sys).__name__}")
+    if isinstance(n_dominant, bool) or not isinstance(n_dominant, (int, np.integer)) or n_dominant < 1:
+        raise LinearizeInputError(f"n_dominant must be an integer >= 1, got {n_dominant!r}")
     a = np.asarray(sys.A)
+    if a.size == 0 or not np.all(np.isfinite(a)):
+        raise LinearizeInputError("sys.A must be a non-empty matrix of finite values")
     lam, right = np.linalg.eig(a)
     left = np.linalg.inv(right).T
     rows = []
