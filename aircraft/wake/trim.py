@@ -477,9 +477,11 @@ def run_wake(wake, controls=None, duration=1.0, *, points=None, about_trim=True,
         ``beta1s_dot/beta1c_dot`` [rad/s] per rotor, requested velocities.
     """
     controls = {} if controls is None else dict(controls)
-    unknown = set(controls) - set(wake.control_names)
+    flap_names = list(getattr(wake, "flap_input_names", []))
+    unknown = set(controls) - set(wake.control_names) - set(flap_names)
     if unknown:
-        raise WakeInputError(f"unknown control names {sorted(unknown)}; have {wake.control_names}")
+        raise WakeInputError(f"unknown control names {sorted(unknown)}; have "
+                             f"{wake.control_names + flap_names}")
     duration = _real(WakeInputError, "duration", duration, positive=True, unit="s")
     if duration / wake.dt > 10_000_000:
         raise WakeInputError(f"duration = {duration:g} s is {duration / wake.dt:.3g} wake steps; "
