@@ -1,15 +1,18 @@
 """Sweep driver: frequency sweeps and doublets on the trimmed wake, in parallel.
 
-Each run is cached on disk (:mod:`aircraft.wake.cache`: ``<folder>/<hash>.pkl``)
-keyed on a SHA-256 of every input (configuration, settings, flight condition,
-trim request, input signal and requested points), so repeating a study costs
-nothing.  The folder is the ``cache_dir`` argument, else the environment
-variable ``ROTORWAKE_CACHE_DIR``, else ``.cache/wake``.  Entries are written
-atomically by the worker that computed them as soon as each run finishes, and
-checked (schema, code version, key, length, SHA-256, finite values) on every
-read, so a sweep set killed midway and started again reuses every finished run,
-recomputes only the rest and never reads a partial file; a bad entry is
-reported with a :class:`~aircraft.wake.cache.CacheWarning` and recomputed.
+The cache (:mod:`aircraft.wake.cache`) lives in the ``cache_dir`` argument, else
+the folder named by the environment variable ``ROTORWAKE_CACHE_DIR``, else
+``.cache/wake``; its keys also hold a digest of the wake's source code.
+Entries are written atomically by the worker that computed them as soon as each
+run finishes, and checked (schema, code version, key, length, SHA-256, finite
+values) on every read, so a sweep set killed midway and started again reuses
+every finished run, recomputes only the rest and never reads a partial file; a
+bad entry is reported with a :class:`~aircraft.wake.cache.CacheWarning` and
+recomputed.
+
+Each run is cached on disk (``.cache/wake/<hash>.pkl``) keyed on a SHA-256 of
+every input (configuration, settings, flight condition, trim request, input
+signal and requested points), so repeating a study costs nothing.
 """
 from __future__ import annotations
 
@@ -283,15 +286,15 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
         raise ValueError(f"n_jobs must be an integer >= 1, got {n_jobs!r}")
     if trim is not None and not isinstance(trim, dict):
         raise TypeError(f"trim must be a dict of trim_wake keyword arguments, got {type(trim).__name__}")
-    trim = dict(trim or {})
-    points = dict(points or {})
-    for label, p in points.items():
+    for label, p in dict(points or {}).items():
         if not isinstance(label, str) or not label:
             raise ValueError(f"point labels must be non-empty strings, got {label!r}")
         arr = np.asarray(p)
         if arr.shape != (3,) or not np.isrealobj(arr) or not np.all(np.isfinite(arr.astype(float))):
             raise ValueError(f"point {label!r} must be three finite real coordinates (x, y, z) [m], "
                              f"got {p!r}")
+    trim = dict(trim or {})
+    points = dict(points or {})
     base = {"v": _CACHE_VERSION, "code": _wake_code_digest(), "config": repr(config), "settings": asdict(settings),
             "flight": asdict(flight), "trim": trim,
             "points": {k: list(map(float, v)) for k, v in points.items()}}
