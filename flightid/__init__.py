@@ -12,8 +12,10 @@ a flight-test record or a wind-tunnel record.
               │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
               ▼
     MLTauStructure / FGCStructure / GainDelayStructure  (free / fixed / tied parameters)
-              │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability)
-              │ reduce (automatic Fig. 6.1 loop)
+              │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability, multi-start;
+              │       DegeneracyReport: flat directions, square-block singular values)
+              │ fit_staged (plan of Stage s, §6.4.3)
+              │ reduce (automatic Fig. 6.1 loop; refuses removals without a finite optimum)
               ▼
     FitResult.model  ─►  control.StateSpace (Padé delays)  ─►  verify (TIC, RMS)
 """
@@ -23,8 +25,10 @@ from .sweeps import doublet, frequency_sweep, multistep_3211, shaped_noise
 from .response import MeasuredResponse, combine_responses, frequency_response
 from .joint import joint_input_output
 from .structures import FGCStructure, GainDelayStructure, MLTauStructure, ModelStructure
-from .fitting import FitResult, cifer_cost, coherence_weight, fit
+from .fitting import COHERENCE_FLOOR, FitResult, cifer_cost, coherence_weight, fit
+from .degeneracy import DegeneracyReport, MultiStartReport, NoInformationError
 from .reduction import ReductionResult, reduce
+from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
 
 __all__ = [
@@ -34,7 +38,9 @@ __all__ = [
     "MeasuredResponse", "combine_responses", "frequency_response",
     "joint_input_output",
     "FGCStructure", "GainDelayStructure", "MLTauStructure", "ModelStructure",
-    "FitResult", "cifer_cost", "coherence_weight", "fit",
+    "COHERENCE_FLOOR", "FitResult", "cifer_cost", "coherence_weight", "fit",
+    "DegeneracyReport", "MultiStartReport", "NoInformationError",
     "ReductionResult", "reduce",
+    "Stage", "StagedFitResult", "fit_staged",
     "VerificationResult", "theil_inequality", "verify",
 ]

@@ -18,15 +18,22 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
+from threadpoolctl import threadpool_limits
 
+from .degeneracy import (DegeneracyReport, MultiStartReport, NoInformationError, block_singular_values,
+                         hessian_report, multistart_report, square_components)
 from .errors import IdentificationError, UnstableModelError
 from .response import MeasuredResponse
 from .structures import ModelStructure
 
-__all__ = ["fit", "FitResult", "cifer_cost", "coherence_weight"]
+__all__ = ["fit", "FitResult", "cifer_cost", "coherence_weight", "COHERENCE_FLOOR"]
 
 W_GAIN = 1.0
 W_PHASE = 0.01745
+#: A response needs at least 3 fitted points with coherence >= COHERENCE_FLOOR to
+#: carry information; below 0.2 the weight W_gamma is < 8 % of its maximum and
+#: the estimate is mostly noise (Tischler & Remple put the usable floor at 0.4-0.6).
+COHERENCE_FLOOR = 0.2
 
 
 def coherence_weight(coherence):
@@ -122,6 +129,36 @@ class FitResult:
     message: str
     n_omega: int
     pairs: list = field(default_factory=list)
+    degeneracy: DegeneracyReport | None = None
+    multistart: MultiStartReport | None = None
+    skipped_pairs: list = field(default_factory=list)
+
+    @property
+    def condition_number(self) -> float:
+        """Condition number of the Hessian in relative parameter units (inf if singular)."""
+        return self.degeneracy.condition_number if self.degeneracy is not None else float("nan")
+
+    @property
+    def flat_directions(self) -> pd.DataFrame:
+        """Flat directions of J: eigenvalue ratio, relative CR %, parameters moving together."""
+        return self.degeneracy.flat_directions.copy()
+
+    @property
+    def singular_value_ratios(self) -> pd.DataFrame:
+        """sigma_min/sigma_max of model and data for the square blocks checked, over frequency."""
+        return self.degeneracy.singular_values.copy()
+
+    @property
+    def warnings(self) -> list:
+        """What J cannot see: flat directions, parameters without influence, rank-deficient
+        square blocks, skipped incoherent responses, disagreeing starts."""
+        out = list(self.degeneracy.warnings) if self.degeneracy is not None else []
+        if self.skipped_pairs:
+            out.append(f"responses skipped (fewer than 3 points with coherence >= {COHERENCE_FLOOR}): "
+                       f"{self.skipped_pairs}")
+        if self.multistart is not None and not self.multistart.agree:
+            out.append(self.multistart.summary())
+        return out
 
     @property
     def model(self):
@@ -163,19 +200,192 @@ class FitResult:
         lines = [f"J_ave = {self.J_ave:.2f} over {len(self.cost_table)} responses"]
         lines.append(self.cost_table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
         lines.append(self.parameters.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+        if self.degeneracy is not None:
+            lines.append(self.degeneracy.summary())
+        if self.multistart is not None:
+            lines.append(self.multistart.summary())
+        if not self.success:
+            lines.append(f"FIT FAILED: {self.message}")
         return "\n".join(lines)
+
+
+def _informative(coherence):
+    return int(np.sum(np.asarray(coherence) >= COHERENCE_FLOOR)) >= min(3, np.size(coherence))
+
+
+def _range_for(frequency_ranges, data, o, u, coherence_min):
+    if isinstance(frequency_ranges, dict) and (o, u) in frequency_ranges:
+        return tuple(frequency_ranges[(o, u)])
+    if frequency_ranges is not None and not isinstance(frequency_ranges, dict):
+        if len(frequency_ranges) != 2:
+            raise IdentificationError("frequency_ranges must be (w_lo, w_hi) or a dict of them")
+        return tuple(frequency_ranges)
+    rng = _default_range(data, o, u, coherence_min)
+    if rng is None:
+        raise IdentificationError(f"{o}/{u} has too few points with coherence >= {coherence_min}")
+    return rng
+
+
+def _prepare_pairs(structure, sources, pairs, frequency_ranges, n_omega, coherence_min):
+    """Sample every fitted pair on its log grid; drop (default pairs) or refuse (explicit
+    pairs) responses without coherent points. Returns (pair_data, skipped)."""
+    explicit = pairs is not None
+    if pairs is None:
+        pairs = []
+        for i, o in enumerate(structure.outputs):
+            for j, u in enumerate(structure.inputs):
+                src = _source_of(sources, o, u)
+                if src is None:
+                    continue   # no data
+                h = np.abs(structure.frequency_response(src.omega))
+                # structurally zero in the model (to the rounding of a modal evaluation)
+                if np.all(h[i, j] <= 1e-12 * max(h.max(), 1e-300)):
+                    continue
+                if _default_range(src, o, u, coherence_min) is not None:
+                    pairs.append((o, u))
+        if not pairs:
+            raise NoInformationError(f"no response has coherence >= {coherence_min} on enough points")
+    pair_data, skipped = [], []
+    for o, u in pairs:
+        if o not in structure.outputs or u not in structure.inputs:
+            raise IdentificationError(f"pair {o}/{u} is not an (output, input) of the structure")
+        data = _source_of(sources, o, u)
+        if data is None:
+            raise IdentificationError(f"no measured response holds {o}/{u}")
+        lo, hi = _range_for(frequency_ranges, data, o, u, coherence_min)
+        wn, h, c = _sample_pair(data, o, u, lo, hi, n_omega)
+        if not (np.all(np.isfinite(h)) and np.all(np.isfinite(c))):
+            raise IdentificationError(f"the measured response {o}/{u} holds NaN or infinite values "
+                                      f"in ({lo:.4g}, {hi:.4g}) rad/s")
+        if not _informative(c):
+            if explicit:
+                raise NoInformationError(
+                    f"{o}/{u} has no coherent point: fewer than 3 of its {n_omega} fitted frequencies in "
+                    f"({lo:.4g}, {hi:.4g}) rad/s reach coherence {COHERENCE_FLOOR} (max {np.max(c):.3g}); "
+                    "the data carry no information on it")
+            skipped.append((o, u))
+            continue
+        pair_data.append(_PairData(o, u, structure.outputs.index(o), structure.inputs.index(u), wn, h, c))
+    if not pair_data:
+        raise NoInformationError(
+            f"no response has a coherent point: every candidate ({skipped}) has fewer than 3 fitted "
+            f"frequencies with coherence >= {COHERENCE_FLOOR}; the data carry no information")
+    return pair_data, skipped
+
+
+class _Problem:
+    """The weighted CIFER residual of a structure over sampled pairs, with the
+    stability penalty of §6.4.1 (one model evaluation over all pairs' grids)."""
+
+    def __init__(self, structure, pair_data, stability_margin):
+        self.structure = structure
+        self.free = structure.free_names
+        self.pairs = pair_data
+        self.omega = np.concatenate([p.omega for p in pair_data])
+        edges = np.cumsum([0] + [p.omega.size for p in pair_data])
+        self.slices = [slice(a, b) for a, b in zip(edges[:-1], edges[1:])]
+        self.margin = stability_margin
+        self.has_dynamics = structure.poles().size > 0
+        # The penalty acts slightly inside the boundary (``buffer``) so the optimum
+        # of a fit pressed against it lands strictly stable; its weight is raised
+        # until the re-check passes (a finite penalty alone trades a tiny violation
+        # for cost).
+        self.buffer = 1e-4 * max(1.0, abs(stability_margin))
+        self.weight = 1e3
+        self.lower = np.array([0.0 if n in structure.delay_names else -np.inf for n in self.free])
+
+    def residuals(self, x, with_penalty=True):
+        vals = dict(zip(self.free, x))
+        h = self.structure.frequency_response(self.omega, vals)
+        parts = [_pair_residual(h[p.i, p.j, sl], p.h, p.coh) for p, sl in zip(self.pairs, self.slices)]
+        if with_penalty and self.has_dynamics:
+            try:
+                worst = np.max(self.structure.poles(vals).real) + self.margin + self.buffer
+            except IdentificationError:   # e.g. a singular M on the way: no state-space form
+                worst = 1.0
+            parts.append(np.array([self.weight * max(0.0, worst)]))
+        return np.concatenate(parts)
+
+    def _dead(self, x):
+        h = self.structure.frequency_response(self.omega, dict(zip(self.free, x)))
+        return [k for k, (p, sl) in enumerate(zip(self.pairs, self.slices)) if not np.any(h[p.i, p.j, sl] != 0)]
+
+    def revive(self, x):
+        """Start values for zero-valued parameters that alone feed a fitted pair whose
+        model response is identically zero. In dB such a pair sits at -inf with a
+        zero gradient, so the optimizer cannot leave it (e.g. a stage that frees
+        the gains of newly added responses at 0). Each such parameter starts where
+        its (probed) response has the data's median magnitude, with the sign whose
+        phase fits better. Pairs with a live model response are never touched."""
+        x = np.array(x, float)
+        dead = self._dead(x)
+        for k in range(x.size):
+            if not dead:
+                break
+            if x[k] != 0 or self.lower[k] == 0:        # delays stay as given
+                continue
+            probe = x.copy()
+            probe[k] = 1.0
+            hp = self.structure.frequency_response(self.omega, dict(zip(self.free, probe)))
+            live = [d for d in dead if np.any(hp[self.pairs[d].i, self.pairs[d].j, self.slices[d]] != 0)]
+            if not live:
+                continue
+            ratio = np.median([np.median(np.abs(self.pairs[d].h)) /
+                               np.median(np.abs(hp[self.pairs[d].i, self.pairs[d].j, self.slices[d]]))
+                               for d in live])
+            trials = []
+            for v in (ratio, -ratio):
+                probe[k] = v
+                trials.append((float(np.sum(self.residuals(probe, with_penalty=True) ** 2)), v))
+            x[k] = min(trials)[1]
+            dead = self._dead(x)
+        return x
+
+    def solve(self, x0, max_nfev, revive=False):
+        """Least squares from ``x0``; returns (sol, fitted structure, stable)."""
+        x = np.maximum(np.asarray(x0, float), self.lower)
+        if revive:
+            x = self.revive(x)
+        self.weight = 1e3
+        for _ in range(4):
+            sol = least_squares(self.residuals, x, bounds=(self.lower, np.full_like(x, np.inf)),
+                                x_scale="jac", method="trf", max_nfev=max_nfev or 200 * (len(x) + 1),
+                                xtol=1e-12, ftol=1e-12)
+            x = sol.x
+            fitted = self.structure.with_values(dict(zip(self.free, x)))
+            stable = not self.has_dynamics or fitted.is_stable(margin=self.margin)
+            if stable:
+                break
+            self.weight *= 100.0
+        return sol, fitted, stable
+
+
+def _start_points(x0, lower, starts, seed, spread):
+    """Start 0 is the given initial guess; the others scatter it (seeded): each
+    non-zero parameter by a factor in [1 - spread, 1 + spread], each zero one by
+    +-spread times the typical free-parameter magnitude."""
+    rng = np.random.default_rng(seed)
+    nz = np.abs(x0[x0 != 0])
+    typical = float(np.median(nz)) if nz.size else 1.0
+    points = [x0]
+    for _ in range(starts - 1):
+        f = rng.uniform(-1.0, 1.0, x0.size)
+        x = np.where(x0 != 0, x0 * (1.0 + spread * f), spread * typical * f)
+        points.append(np.maximum(x, lower))
+    return points
 
 
 def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=None,
         n_omega=20, coherence_min=0.6, stability_margin=0.0, require_stable=True,
-        max_nfev=None) -> FitResult:
+        max_nfev=None, starts=1, seed=None, start_spread=0.5, square_blocks=None,
+        multistart_cost_tol=None, multistart_parameter_rtol=0.02, revive_dead_pairs=False) -> FitResult:
     """Minimise the CIFER cost of ``structure`` against measured responses.
 
     Parameters
     ----------
     structure : ModelStructure
         Its free parameters are adjusted, fixed ones kept (staged fits:
-        ``structure.fix([...])`` / ``.free([...])``, §6.4.3).
+        :func:`flightid.fit_staged`, or ``structure.fix([...])`` / ``.free([...])``).
     responses : MeasuredResponse or sequence of MeasuredResponse
         Responses with coherence (e.g. from :func:`joint_input_output`); with
         several, each pair is taken from the first response that holds it
@@ -183,21 +393,57 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     pairs : list of (output, input), optional
         Responses to fit. Default: every pair the structure and data share whose
         coherence reaches ``coherence_min`` on 5+ points and whose model response
-        is not structurally zero.
+        is not structurally zero; of those, pairs with fewer than 3 fitted points
+        of coherence >= :data:`COHERENCE_FLOOR` are skipped (listed in
+        ``FitResult.skipped_pairs``). An explicit pair without such points raises
+        :class:`NoInformationError`.
     frequency_ranges : tuple or dict, optional
         ``(w_lo, w_hi)`` [rad/s] for all pairs, or ``{(output, input): (lo, hi)}``.
         Default: from the first to the last frequency with coherence >= ``coherence_min``.
     n_omega : int
         Log-spaced frequency points per response (CIFER uses 20).
+    coherence_min : float
+        Coherence threshold for the default pairs and ranges.
     stability_margin : float
         Eigenvalues must satisfy Re < -margin [1/s] (§6.4.1): enforced by a penalty
         during the fit and checked after it.
     require_stable : bool
         Raise :class:`UnstableModelError` if the fitted model is unstable.
+    max_nfev : int, optional
+        Model evaluations per start (default 200 per free parameter).
+    starts : int
+        Number of starts: the given initial values, and ``starts - 1`` seeded
+        scatterings of them (``start_spread``). The lowest stable cost wins;
+        ``FitResult.multistart`` reports whether the starts agree.
+    seed : int, optional
+        Seed of the start scattering.
+    start_spread : float
+        Relative scatter of the extra starts (0.5: factors in [0.5, 1.5]).
+    square_blocks : list of (outputs, inputs), optional
+        Square blocks whose singular-value ratios are compared between model and
+        data. Default: the square connected components of the fitted pairs
+        (e.g. the 2 x 2 collective block of a coaxial rotor). ``[]`` disables.
+    multistart_cost_tol, multistart_parameter_rtol : float
+        Agreement criteria of the starts: J_ave spread (default 1 % of the best
+        J_ave, at least 1e-6) and relative parameter spread (2 %).
+    revive_dead_pairs : bool
+        A fitted pair whose model response is identically zero at the start sits
+        at -inf dB with zero gradient. With True, zero-valued parameters that
+        feed such a pair start at the data's median magnitude with the better
+        sign (see ``_Problem.revive``); default False keeps the given start.
 
     Returns
     -------
     FitResult
+        ``success`` is False when the optimizer did not converge or a free
+        parameter has no influence on the fitted responses (``warnings`` says which).
+
+    Raises
+    ------
+    NoInformationError
+        No response has a coherent point (e.g. coherence zero everywhere).
+    UnstableModelError
+        Every start ended unstable and ``require_stable`` is set.
     """
     free = structure.free_names
     if not free:
@@ -214,79 +460,49 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
         raise IdentificationError(f"data lacks the structure's outputs {missing_o} / inputs {missing_i}")
     if n_omega < 3:
         raise IdentificationError("n_omega must be at least 3")
-    if pairs is None:
-        pairs = []
-        for i, o in enumerate(structure.outputs):
-            for j, u in enumerate(structure.inputs):
-                src = _source_of(sources, o, u)
-                if src is None or np.all(structure.frequency_response(src.omega)[i, j] == 0):
-                    continue   # no data, or structurally zero in the model
-                if _default_range(src, o, u, coherence_min) is not None:
-                    pairs.append((o, u))
-    if not pairs:
-        raise IdentificationError(f"no response has coherence >= {coherence_min} on enough points")
-    pair_data = []
-    for o, u in pairs:
-        if o not in structure.outputs or u not in structure.inputs:
-            raise IdentificationError(f"pair {o}/{u} is not an (output, input) of the structure")
-        data = _source_of(sources, o, u)
-        if data is None:
-            raise IdentificationError(f"no measured response holds {o}/{u}")
-        if isinstance(frequency_ranges, dict) and (o, u) in frequency_ranges:
-            lo, hi = frequency_ranges[(o, u)]
-        elif frequency_ranges is not None and not isinstance(frequency_ranges, dict):
-            if len(frequency_ranges) != 2:
-                raise IdentificationError("frequency_ranges must be (w_lo, w_hi) or a dict of them")
-            lo, hi = frequency_ranges
-        else:
-            rng = _default_range(data, o, u, coherence_min)
-            if rng is None:
-                raise IdentificationError(f"{o}/{u} has too few points with coherence >= {coherence_min}")
-            lo, hi = rng
-        wn, h, c = _sample_pair(data, o, u, lo, hi, n_omega)
-        pair_data.append(_PairData(o, u, structure.outputs.index(o), structure.inputs.index(u), wn, h, c))
+    if not (isinstance(starts, (int, np.integer)) and starts >= 1):
+        raise IdentificationError(f"starts must be a positive integer, got {starts!r}")
+    if not (np.isfinite(start_spread) and start_spread >= 0):
+        raise IdentificationError(f"start_spread must be a finite number >= 0, got {start_spread!r}")
+    pair_data, skipped = _prepare_pairs(structure, sources, pairs, frequency_ranges, n_omega, coherence_min)
 
+    # the fit evaluates small dense matrices thousands of times: BLAS threads only
+    # add contention (measured 3x slower on a loaded 2-core machine)
+    with threadpool_limits(1):
+        return _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable,
+                    max_nfev, starts, seed, start_spread, square_blocks, multistart_cost_tol,
+                    multistart_parameter_rtol, revive_dead_pairs)
+
+
+def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable, max_nfev,
+         starts, seed, start_spread, square_blocks, multistart_cost_tol, multistart_parameter_rtol,
+         revive_dead_pairs):
+    free = structure.free_names
+    problem = _Problem(structure, pair_data, stability_margin)
     x0 = np.array([structure.values[n] for n in free])
-    lower = np.array([0.0 if n in structure.delay_names else -np.inf for n in free])
-    x0 = np.maximum(x0, lower)
-    has_dynamics = structure.poles().size > 0
-
-    # Stability (§6.4.1) by an exterior penalty on the rightmost eigenvalue. The
-    # penalty acts slightly inside the boundary (``buffer``) so the optimum of a
-    # fit pressed against it lands strictly stable, and its weight is raised
-    # until the re-check passes (a finite penalty alone trades a tiny violation
-    # for cost).
-    buffer = 1e-4 * max(1.0, abs(stability_margin))
-    weight = [1e3]
-
-    def residuals(x, with_penalty=True):
-        vals = dict(zip(free, x))
-        parts = []
-        for p in pair_data:
-            hm = structure.frequency_response(p.omega, vals)[p.i, p.j]
-            parts.append(_pair_residual(hm, p.h, p.coh))
-        if with_penalty and has_dynamics:
-            try:
-                worst = np.max(structure.poles(vals).real) + stability_margin + buffer
-            except IdentificationError:   # e.g. a singular M on the way: no state-space form
-                worst = 1.0
-            parts.append(np.array([weight[0] * max(0.0, worst)]))
-        return np.concatenate(parts)
-
-    x = x0
-    for _ in range(4):
-        sol = least_squares(residuals, x, bounds=(lower, np.full_like(x0, np.inf)), x_scale="jac",
-                            method="trf", max_nfev=max_nfev or 200 * (len(x0) + 1), xtol=1e-12,
-                            ftol=1e-12)
-        x = sol.x
-        fitted = structure.with_values(dict(zip(free, x)))
-        if not has_dynamics or fitted.is_stable(margin=stability_margin):
-            break
-        weight[0] *= 100.0
+    records, outcomes, first_error = [], [], None
+    for k, xs in enumerate(_start_points(x0, problem.lower, starts, seed, start_spread)):
+        sol, fitted, stable = problem.solve(xs, max_nfev, revive_dead_pairs)
+        j_ave = float(np.mean([cifer_cost(fitted.frequency_response(p.omega)[p.i, p.j], p.h, p.coh)
+                               for p in pair_data]))
+        rec = {"start": k, "J_ave": j_ave if stable or not require_stable else np.nan,
+               "success": bool(sol.success) and stable,
+               "note": "" if stable else "unstable", **dict(zip(free, sol.x))}
+        records.append(rec)
+        if stable or not require_stable:
+            outcomes.append((j_ave, k, sol, fitted))
+        elif first_error is None:
+            first_error = UnstableModelError(f"fitted model violates Re(p) < -{stability_margin} 1/s: "
+                                             f"poles {np.round(fitted.poles(), 4)}")
+    if not outcomes:
+        raise first_error
+    j_best, best, sol, fitted = min(outcomes, key=lambda o: o[0])
     values = dict(zip(free, sol.x))
-    if require_stable and has_dynamics and not fitted.is_stable(margin=stability_margin):
-        raise UnstableModelError(f"fitted model violates Re(p) < -{stability_margin} 1/s: "
-                                 f"poles {np.round(fitted.poles(), 4)}")
+    multistart = None
+    if starts > 1:
+        tol = multistart_cost_tol if multistart_cost_tol is not None else max(0.01 * j_best, 1e-6)
+        multistart = multistart_report(records, free, best, cost_tol=tol,
+                                       parameter_rtol=multistart_parameter_rtol)
 
     costs = []
     for p in pair_data:
@@ -298,7 +514,22 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     cost_table["J_ave"] = j_ave
     cost_table.attrs["J_ave"] = j_ave
 
-    cr, ins = _cramer_rao_insensitivity(lambda x: residuals(x, with_penalty=False), sol.x)
+    jac = _jacobian(lambda x: problem.residuals(x, with_penalty=False), sol.x)
+    cr, ins = _cramer_rao_insensitivity(None, sol.x, jac=jac)
+    report = hessian_report(jac, free, sol.x)
+    ranges = {(p.output, p.input): (p.omega[0], p.omega[-1]) for p in pair_data}
+    blocks = square_components(ranges) if square_blocks is None else list(square_blocks)
+
+    def element(o, u, w):
+        src = _source_of(sources, o, u)
+        if src is None:
+            return None
+        lo, hi = max(w[0], src.omega[0]), min(w[-1], src.omega[-1])
+        return _sample_pair(src, o, u, lo, hi, w.size)[1] if lo < hi else None
+
+    if blocks:
+        report.singular_values, sv_warnings = block_singular_values(fitted, element, blocks, ranges)
+        report.warnings.extend(sv_warnings)
     table = fitted.parameter_table()
     table["cramer_rao_pct"] = np.nan
     table["insensitivity_pct"] = np.nan
@@ -307,16 +538,18 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
         scale = abs(values[n]) if values[n] != 0 else np.nan
         table.loc[row, "cramer_rao_pct"] = 100.0 * cr[k] / scale
         table.loc[row, "insensitivity_pct"] = 100.0 * ins[k] / scale
+    success, message = bool(sol.success), str(sol.message)
+    if report.no_influence:
+        success = False
+        message = (f"parameters {report.no_influence} have no influence on the fitted responses: the data "
+                   f"carry no information on them (fix or remove them); optimizer: {sol.message}")
     data_out = sources[0] if len(sources) == 1 else sources
-    return FitResult(fitted, table, cost_table, j_ave, data_out, bool(sol.success), sol.message,
-                     n_omega, pair_data)
+    return FitResult(fitted, table, cost_table, j_ave, data_out, success, message, n_omega, pair_data,
+                     degeneracy=report, multistart=multistart, skipped_pairs=skipped)
 
 
-def _cramer_rao_insensitivity(residual_fn, x):
-    """Eqs. 3.15-3.16 with H = d2 J_sum / dTheta2 ~ 2 Jr^T Jr (Gauss-Newton).
-
-    Returns the *un-normalised* (2 sqrt(inv(H)_ii), 1/sqrt(H_ii)) per parameter.
-    """
+def _jacobian(residual_fn, x):
+    """Central-difference Jacobian of the residual vector."""
     r0 = residual_fn(x)
     jac = np.empty((r0.size, x.size))
     for k in range(x.size):
@@ -324,6 +557,16 @@ def _cramer_rao_insensitivity(residual_fn, x):
         e = np.zeros_like(x)
         e[k] = h
         jac[:, k] = (residual_fn(x + e) - residual_fn(x - e)) / (2 * h)
+    return jac
+
+
+def _cramer_rao_insensitivity(residual_fn, x, jac=None):
+    """Eqs. 3.15-3.16 with H = d2 J_sum / dTheta2 ~ 2 Jr^T Jr (Gauss-Newton).
+
+    Returns the *un-normalised* (2 sqrt(inv(H)_ii), 1/sqrt(H_ii)) per parameter.
+    """
+    if jac is None:
+        jac = _jacobian(residual_fn, x)
     hess = 2.0 * jac.T @ jac
     diag = np.diag(hess)
     ins = np.where(diag > 0, 1.0 / np.sqrt(np.maximum(diag, 1e-300)), np.inf)

@@ -295,7 +295,7 @@ class MLTauStructure(ModelStructure):
         m, lb = mats["M"], mats["L"]
         sm = self._s_model(s)
         inv = np.linalg.inv(m[None, :, :] * sm[:, None, None] + lb[None, :, :])
-        return np.einsum("ok,wkj->ojw", self.C, inv)
+        return np.moveaxis(self.C @ inv, 0, -1)
 
     def _abcd(self, mats):
         m, lb = mats["M"], mats["L"]
@@ -315,12 +315,17 @@ class FGCStructure(ModelStructure):
     ``F`` (n x n) and ``G`` (n x n_inputs) are pattern matrices; ``C`` is a fixed
     numeric matrix (e.g. the 6 x 12 summing matrix of Eq. 2.32); ``tau``
     (n_outputs x n_inputs) delays input j on output i.  ``omega`` as in
-    :class:`MLTauStructure`.
+    :class:`MLTauStructure`. ``D`` (n_outputs x n_inputs pattern, optional) adds a
+    direct feedthrough ``y = C x + D u(t - tau)``. Flap-rate inputs (Eq. 6.2) are
+    just further named inputs (columns of ``G``); ties across axes are names
+    shared between entries, with ``-`` for the opposite sign.
     """
 
     def __init__(self, F, G, C, tau=None, *, inputs, outputs, initial, fixed=(), omega=None,
-                 states=None):
-        self._init_parameters({"F": F, "G": G, "tau": tau}, inputs, outputs, initial, fixed, omega)
+                 states=None, D=None):
+        self._init_parameters({"F": F, "G": G, "tau": tau, "D": D}, inputs, outputs, initial, fixed, omega)
+        if D is not None and self._patterns["D"].shape != (len(self.outputs), len(self.inputs)):
+            raise IdentificationError(f"D must be {len(self.outputs)} x {len(self.inputs)}")
         n = self._patterns["F"].shape[0]
         if self._patterns["F"].shape != (n, n):
             raise IdentificationError("F must be square")
@@ -340,12 +345,27 @@ class FGCStructure(ModelStructure):
         f, g = mats["F"], mats["G"]
         sm = self._s_model(s)
         n = f.shape[0]
-        res = np.linalg.solve(sm[:, None, None] * np.eye(n)[None] - f[None], np.broadcast_to(g, (s.size,) + g.shape))
-        return np.einsum("ok,wkj->ojw", self.C, res)
+        # modal form C V diag(1/(s - lambda)) V^-1 G: one eigendecomposition instead
+        # of a linear solve per frequency (the fit evaluates this thousands of
+        # times). Its rounding error grows with cond(V); near-defective F (cond(V)
+        # > 1e6, error > ~1e-10) falls back to the direct solve.
+        lam, v = np.linalg.eig(f)
+        if np.isfinite(lam).all() and np.linalg.cond(v) < 1e6:
+            cv = self.C @ v
+            vg = np.linalg.solve(v, g)
+            residues = (cv.T[:, :, None] * vg[:, None, :]).reshape(n, -1)      # (n, o * j)
+            res = (1.0 / (sm[:, None] - lam[None, :])) @ residues                # (w, o * j)
+            out = np.moveaxis(res.reshape(s.size, cv.shape[0], g.shape[1]), 0, -1)
+        else:
+            res = np.linalg.solve(sm[:, None, None] * np.eye(n)[None] - f[None],
+                                  np.broadcast_to(g, (s.size,) + g.shape))
+            out = np.moveaxis(self.C @ res, 0, -1)
+        return out + mats["D"][:, :, None] if "D" in mats else out
 
     def _abcd(self, mats):
         scale = 1.0 if self.omega is None else self.omega
-        return scale * mats["F"], scale * mats["G"], self.C, np.zeros((len(self.outputs), len(self.inputs)))
+        d = mats.get("D", np.zeros((len(self.outputs), len(self.inputs))))
+        return scale * mats["F"], scale * mats["G"], self.C, d
 
 
 class GainDelayStructure(ModelStructure):

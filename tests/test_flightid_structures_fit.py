@@ -202,3 +202,26 @@ def test_reduce_keeps_parameters_whose_removal_costs_too_much():
     assert set(red.log.parameter) == {"a", "g"} and not red.log.accepted.any()
     assert red.result.structure.values["a"] == pytest.approx(2.0, rel=0.01)
     assert isinstance(red.to_pandas(), pd.DataFrame)
+
+
+def test_fgc_modal_evaluation_matches_python_control_including_defective_f_and_feedthrough():
+    # the F/G/C response is evaluated in modal form; a defective F (Jordan block,
+    # eigenvectors parallel) must fall back to the direct solve. python-control's
+    # own evaluation of the state-space realisation is the independent reference.
+    w = np.geomspace(0.1, 50, 30)
+    jordan = FGCStructure([["-a", 1.0], [0, "-a"]], [[0.0], ["g"]], [[1.0, 0.0]], D=[["d"]],
+                          inputs=["u"], outputs=["y"], initial={"a": 2.0, "g": 3.0, "d": 0.5})
+    exact = 3.0 / (1j * w + 2.0) ** 2 + 0.5            # closed form of the Jordan block + D
+    np.testing.assert_allclose(jordan.frequency_response(w)[0, 0], exact, rtol=1e-12)
+    rng = np.random.default_rng(0)
+    f = -np.diag([1.0, 3.0, 7.0]) + 0.3 * rng.standard_normal((3, 3))
+    g = rng.standard_normal((3, 2))
+    c = rng.standard_normal((2, 3))
+    s = FGCStructure(f.tolist(), g.tolist(), c, inputs=["u1", "u2"], outputs=["y1", "y2"], initial={})
+    ref = control.frequency_response(control.ss(f, g, c, np.zeros((2, 2))), w).complex
+    np.testing.assert_allclose(s.frequency_response(w), ref, rtol=1e-10, atol=1e-14)
+    ss_d = jordan.to_statespace()
+    np.testing.assert_allclose(np.squeeze(control.frequency_response(ss_d, w).complex), exact, rtol=1e-9)
+    with pytest.raises(IdentificationError, match="D must be 1 x 1"):
+        FGCStructure([["-a"]], [["g"]], [[1.0]], D=[["d", "e"]], inputs=["u"], outputs=["y"],
+                     initial={"a": 1, "g": 1, "d": 0, "e": 0})

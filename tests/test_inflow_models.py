@@ -80,10 +80,14 @@ def test_linear_model_matches_nonlinear_step_response():
     sys = model.linear(loads, ops)
     x0 = sys.trim_states
     step = np.array([2e-5, 1e-5, 0, 0, 0, 1e-5])   # small: linear regime
+    # the default Dynamic Climb carries K_R (Eq. 2.29): step the flap-rate inputs too [rad/s]
+    rate_step = np.array([0.01, 0.0, 0.0, -0.01])
+    assert sys.input_labels[6:] == model.rate_names
     t = np.linspace(0, 1.0, 201)
-    nl = solve_ivp(lambda _t, x: model.derivatives(x, loads + step, ops), (0, 1), x0, t_eval=t,
+    nl = solve_ivp(lambda _t, x: model.derivatives(x, loads + step, ops, rate_step), (0, 1), x0, t_eval=t,
                    rtol=1e-10, atol=1e-13)
-    lin = control.forced_response(sys, t, np.repeat(step[:, None], t.size, axis=1))
+    u_step = np.concatenate([step, rate_step])
+    lin = control.forced_response(sys, t, np.repeat(u_step[:, None], t.size, axis=1))
     y_nl = np.array([model.inflow(x, loads + step, ops) for x in nl.y.T]).T - sys.trim_outputs[:, None]
     # 1e-5 steps on lam ~ 0.04: nonlinearity O(step/lam) ~ 0.1 %
     np.testing.assert_allclose(lin.outputs[:, -1], y_nl[:, -1], rtol=5e-3, atol=1e-9)

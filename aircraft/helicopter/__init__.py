@@ -4,7 +4,10 @@
 
     Helicopter(config, inflow) ── trim(condition) ──► TrimResult
                                └─ linearize(trim) ──► control.StateSpace ─► modes(sys)
-                                                      └─ coupling_numerator(sys, "p", "delta_lat", {...})
+                                                      ├─ coupling_numerator(sys, "p", "delta_lat", {...})
+                                                      └─ classify_modes(sys) / flap_mode_damping(sys)
+    compare_bare_airframe({"Dynamic Climb": DynamicClimb(), ...}) ──► BareAirframeComparison
+    ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
 """
 from .mixing import PILOT_INPUTS, ROTOR_CONTROLS, mixing_matrix
 from .model import BODY_STATES, Helicopter, HelicopterSettings
@@ -12,8 +15,14 @@ from .trim import TrimCondition, TrimError, TrimInputError, TrimResult, trim
 from .linearize import (LinearizeInputError, NotAtTrimError, NotAtTrimWarning, default_steps,
                         linearize, modes, trim_derivatives)
 from .coupling import CouplingError, coupling_numerator, residualize
+from .mode_physics import classify_modes, flap_mode_damping, flap_mode_sensitivity, pair_modes
+from .responses import DEFAULT_RESPONSE_PAIRS, BareAirframeComparison, compare_bare_airframe
+from .rotor_stand import RotorStandError, ShaftFixedRotors
 
 __all__ = ["PILOT_INPUTS", "ROTOR_CONTROLS", "mixing_matrix", "BODY_STATES", "Helicopter",
            "HelicopterSettings", "TrimCondition", "TrimError", "TrimInputError", "TrimResult", "trim",
            "default_steps", "linearize", "modes", "trim_derivatives", "LinearizeInputError",
-           "NotAtTrimError", "NotAtTrimWarning", "CouplingError", "coupling_numerator", "residualize"]
+           "NotAtTrimError", "NotAtTrimWarning", "CouplingError", "coupling_numerator", "residualize",
+           "classify_modes", "flap_mode_damping", "flap_mode_sensitivity", "pair_modes",
+           "DEFAULT_RESPONSE_PAIRS", "BareAirframeComparison", "compare_bare_airframe",
+           "RotorStandError", "ShaftFixedRotors"]

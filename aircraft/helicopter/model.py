@@ -6,6 +6,11 @@ then per rotor the flap MBC ``beta0, beta1c, beta1s, betad`` and their rates
 ``theta0_U, theta1s_U, theta1c_U, theta0_L, theta1s_L, theta1c_L, theta_prop``
 (single rotor: ``theta0, theta1s, theta1c`` plus ``theta_tr`` as an ideal yaw
 moment control, documented below).
+
+Inflow models with wake-distortion inputs (``uses_flap_rates``) receive the
+full tip-path-plane rates of each rotor, ``beta1s_dot - p_r`` and
+``beta1c_dot - q_r`` in that rotor's frame (:mod:`aircraft.inflow.base`), i.e.
+Eq. 2.29 with its body-rate terms Delta p / Omega, Delta q / Omega.
 """
 from __future__ import annotations
 
@@ -152,6 +157,7 @@ class Helicopter:
             acc_r = np.array([d * xdot[3], xdot[4], d * xdot[5]])
             base = 9 + 8 * k
             xdot[base + 4:base + 8] += rm.flap_acceleration_correction(acc_r)
+        # full tip-path-plane rates (body rates included, Eq. 2.29; RotorModel.tpp_rates)
         tpp = np.array(rates_tpp) if self.inflow.uses_flap_rates else None
         xdot[self.n_rigid:] = self.inflow.derivatives(xin, loads, ops, tpp)
         extra.update({"loads": loads, "force": force, "moment": moment, "ops": ops, "inflow": lam})

@@ -77,6 +77,32 @@ class RotorModel:
         pd, qd = angular_acceleration[0], angular_acceleration[1]
         return np.array([0.0, qd, pd, 0.0])
 
+    @staticmethod
+    def tpp_rates(flap_rate, rates):
+        """Full (space-fixed) tip-path-plane rates ``(beta1s_dot, beta1c_dot)`` [rad/s].
+
+        In the rotor frame (x forward, y to the advancing side at psi = 90 deg, z
+        down) a blade's elevation above the space-fixed plane is
+        ``beta - phi sin(psi) - theta cos(psi)`` (roll right-side-down lowers the
+        psi = 90 deg side, pitch nose-up the aft psi = 0 side), so::
+
+            beta1s_dot_full = beta1s_dot - p_r,    beta1c_dot_full = beta1c_dot - q_r
+
+        with the body rates in the rotor frame, ``p_r = direction * p``,
+        ``q_r = q`` (the clockwise lower rotor mirrors y). Divided by Omega these
+        are ``-(Delta p / Omega - beta1s*)`` and ``-(Delta q / Omega - beta1c*)``, the
+        bracket of Eq. 2.29 with its sign: an inflow model forced by
+        ``-K_R * rate / Omega`` is Eq. 2.29 with the body-rate terms included.
+
+        Parameters
+        ----------
+        flap_rate : array (4,)
+            Shaft-relative MBC flap rates (beta0, beta1c, beta1s, betad) [rad/s].
+        rates : array (3,)
+            Body angular velocity in the rotor frame [rad/s].
+        """
+        return np.array([flap_rate[2] - rates[0], flap_rate[1] - rates[1]])
+
     def evaluate(self, flap, flap_rate, controls, inflow, hub_velocity, rates):
         """Rotor-frame loads and flap accelerations.
 
@@ -98,7 +124,9 @@ class RotorModel:
         dict with ``force`` (3,) [N] and ``moment`` (3,) [N m] on the body at the hub
         (rotor frame), ``ct, cl, cm`` (aerodynamic, convention of
         :mod:`aircraft.inflow.base`), ``cq`` and ``torque`` [N m], ``flap_accel``
-        (4,) [rad/s^2] in MBC, ``tpp_rates`` (beta1s_dot, beta1c_dot) [rad/s].
+        (4,) [rad/s^2] in MBC, ``tpp_rates`` (beta1s_dot, beta1c_dot) [rad/s]: the
+        *full* tip-path-plane rates relative to space (:meth:`tpp_rates`), what
+        the wake-distortion inputs of an inflow model take (Eq. 2.29).
         """
         cfg = self.config
         om, R = cfg.omega, cfg.radius
@@ -171,5 +199,5 @@ class RotorModel:
             "cl": aero_m[0] / scale_m, "cm": aero_m[1] / scale_m,
             "torque": torque, "cq": torque / scale_m,
             "flap_accel": flap_accel,
-            "tpp_rates": np.array([db1s, db1c]),
+            "tpp_rates": self.tpp_rates(flap_rate, rates),
         }

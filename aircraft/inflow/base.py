@@ -19,6 +19,17 @@ lower rotor are the same as those of the upper one:
   Lbar22 = -lambda_h);
 * flap ``beta(psi) = beta0 + beta1c cos(psi) + beta1s sin(psi)`` positive up; flap
   rates ``beta1s_dot``, ``beta1c_dot`` in rad/s.
+* flap-rate (wake-distortion) inputs of an inflow model are the **full**
+  tip-path-plane rates relative to space, body rates included, in the rotor's
+  own frame: ``beta1s_dot = d(beta1s)/dt - p_r``, ``beta1c_dot = d(beta1c)/dt - q_r``
+  with ``p_r = direction * p`` (body roll rate, right side down, mirrored for a
+  clockwise rotor) and ``q_r = q`` (pitch rate, nose up), flap positive up and
+  measured from the shaft. Divided by Omega they are minus the bracket of
+  Eq. 2.29, ``-(Delta p / Omega - Delta beta1s*)``. The aircraft
+  (:meth:`aircraft.helicopter.rotor.RotorModel.tpp_rates`) gives every model
+  that sets ``uses_flap_rates`` these rates; with the shaft fixed (the
+  wind-tunnel wake runs an identified model comes from) they equal the
+  shaft-relative rates, so identified models need no change.
 
 Signals use the canonical names of DESIGN.md: loads ``CT_U, CL_U, CM_U, CT_L, …``
 (no suffix for a single rotor), inflow ``lam0_U, lam1s_U, lam1c_U, …``, flap-rate
@@ -143,7 +154,10 @@ class InflowModel(ABC):
     @abstractmethod
     def derivatives(self, x: np.ndarray, loads: np.ndarray, ops: tuple,
                     rates: np.ndarray | None = None) -> np.ndarray:
-        """State derivative dx/dt [1/s] for total loads and (optional) flap rates."""
+        """State derivative dx/dt [1/s] for total loads and (optional) flap rates.
+
+        ``rates`` (len 2 * n_rotors, order :attr:`rate_names`, rad/s) are the full
+        tip-path-plane rates of the module docstring (body rates included)."""
 
     @abstractmethod
     def inflow(self, x: np.ndarray, loads: np.ndarray, ops: tuple) -> np.ndarray:

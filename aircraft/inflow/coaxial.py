@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .pitt_peters import PittPeters
+from .pitt_peters import KR_ANALYTICAL, PittPeters
 
 __all__ = ["ClimbingLowerRotor", "DynamicClimb"]
 
@@ -90,9 +90,11 @@ class DynamicClimb(PittPeters):
         (0.86 and 1.13 in hover, Ref. 38 via Eq. 2.7; Ref. 38 uses other
         fractions at other speeds).
     kr : float
-        Wake-distortion parameter K_R (Eq. 2.29), same on both rotors. Default 0
-        (no flap-rate inputs); the dissertation's Dynamic Climb model uses the
-        single-rotor analytical value, ``kr=KR_ANALYTICAL`` (1.5, §2.2.2.5).
+        Wake-distortion parameter K_R (Eq. 2.29), same on both rotors. Default:
+        the single-rotor analytical value ``KR_ANALYTICAL`` (1.5, §2.2.2.5), as
+        the dissertation's Dynamic Climb model uses "standard analytical values"
+        for wake distortion (§2.2.2.4); the model then takes the full
+        tip-path-plane rates as inputs. ``kr=0`` gives the model without them.
 
     Notes
     -----
@@ -101,7 +103,7 @@ class DynamicClimb(PittPeters):
     (see :mod:`aircraft.inflow.pitt_peters` on the sign of mu_c in Eqs. 2.4-2.5).
     """
 
-    def __init__(self, upper_fraction=0.86, lower_fraction=1.13, kr=0.0):
+    def __init__(self, upper_fraction=0.86, lower_fraction=1.13, kr=KR_ANALYTICAL):
         super().__init__(rotors=("U", "L"), kr=kr)
         self.upper_fraction = float(upper_fraction)
         self.lower_fraction = float(lower_fraction)

@@ -70,8 +70,13 @@ rotor's slipstream has a *larger* total flow and a *smaller* induced inflow.
 (Either way the magnitudes of Eq. 2.4 are what the code gives for |mu_c|.)
 
 Wake distortion (Eq. 2.29): with ``kr`` != 0 the model takes the tip-path-plane
-rates ``beta1s_dot, beta1c_dot`` [rad/s] (relative to space, i.e. flap rate minus
-body rate in the rotor frame, the ``beta* - p/Omega`` of Eq. 2.29) as inputs.
+rates ``beta1s_dot, beta1c_dot`` [rad/s] as inputs, relative to space (flap rate
+minus body rate in the rotor frame, ``beta1s_dot = d beta1s/dt - p_r``,
+``beta1c_dot = d beta1c/dt - q_r``, :mod:`aircraft.inflow.base`; the aircraft
+supplies them so). The forcing ``[V][Lhat]^-1 (0, -K_R beta1s_dot, -K_R beta1c_dot)/Omega``
+is then exactly Eq. 2.29's ``[L]^-1 K_R (Delta p/Omega - Delta beta1s*)`` and
+``(Delta q/Omega - Delta beta1c*)``; at steady state ``lam1s = Lbar22^-1 dC_L -
+K_R beta1s_dot / Omega`` (DC gain ``-K_R/Omega`` per rad/s of rate).
 
 Time: the equations above are in azimuth; :meth:`PittPeters.derivatives` is the
 one place they become seconds (``d/dt = Omega d/dpsi``).
