@@ -10,8 +10,8 @@
 The wake is a subpackage (``aircraft.wake``) imported on demand: it compiles
 numba kernels on first use.
 """
-from .configs import (AircraftConfig, PropellerConfig, RotorConfig, ASSUMPTIONS,
+from .configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, ASSUMPTIONS,
                       coaxial_compound, uh60_single_rotor)
 
-__all__ = ["AircraftConfig", "PropellerConfig", "RotorConfig", "ASSUMPTIONS",
+__all__ = ["AircraftConfig", "ConfigError", "PropellerConfig", "RotorConfig", "ASSUMPTIONS",
            "coaxial_compound", "uh60_single_rotor"]

@@ -19,8 +19,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 import math
 
+from ._validation import integer as _integer, real as _real, vector as _vector
+
 __all__ = [
-    "FT", "LB", "RHO_SEA_LEVEL", "GRAVITY",
+    "ConfigError", "FT", "LB", "RHO_SEA_LEVEL", "GRAVITY",
     "RotorConfig", "PropellerConfig", "AircraftConfig",
     "coaxial_compound", "uh60_single_rotor", "ASSUMPTIONS",
 ]
@@ -29,6 +31,13 @@ FT = 0.3048            #: metres per foot
 LB = 0.45359237        #: kilograms per pound (mass)
 RHO_SEA_LEVEL = 1.225  #: ISA sea-level density, kg/m^3
 GRAVITY = 9.80665      #: m/s^2
+
+
+class ConfigError(ValueError):
+    """A configuration field is NaN, infinite, complex, of the wrong type or out of range.
+
+    The message names the field (``RotorConfig.twist``) and what is allowed.
+    """
 
 
 @dataclass(frozen=True)
@@ -98,21 +107,34 @@ class RotorConfig:
     flap_inertia: float | None = None
 
     def __post_init__(self):
-        if self.flap_inertia is not None and not self.flap_inertia > 0:
-            raise ValueError("RotorConfig.flap_inertia must be positive [kg m^2]")
-        for attr in ("radius", "omega", "chord", "lift_slope", "blade_mass"):
-            if not getattr(self, attr) > 0:
-                raise ValueError(f"RotorConfig.{attr} must be positive, got {getattr(self, attr)!r}")
-        if not (isinstance(self.n_blades, int) and self.n_blades >= 2):
-            raise ValueError(f"RotorConfig.n_blades must be an integer >= 2, got {self.n_blades!r}")
-        if not 0.0 <= self.root_cutout < 1.0:
-            raise ValueError(f"RotorConfig.root_cutout must be in [0, 1), got {self.root_cutout!r}")
+        c = "RotorConfig."
+        if not isinstance(self.name, str):
+            raise ConfigError(f"{c}name must be a string (\"U\", \"L\" or \"\"), got {self.name!r}")
+        if self.flap_inertia is not None:
+            _real(ConfigError, c + "flap_inertia", self.flap_inertia, positive=True, unit="kg m^2")
+        for attr, unit in (("radius", "m"), ("omega", "rad/s"), ("chord", "m"),
+                           ("lift_slope", "1/rad"), ("blade_mass", "kg")):
+            _real(ConfigError, c + attr, getattr(self, attr), positive=True, unit=unit)
+        _integer(ConfigError, c + "n_blades", self.n_blades, minimum=2)
+        if not isinstance(self.n_blades, int):
+            raise ConfigError(f"{c}n_blades must be a Python int >= 2, got {self.n_blades!r}")
+        # a linear twist beyond +-45 deg from root to tip is no rotor blade
+        _real(ConfigError, c + "twist", self.twist, lo=-math.pi / 4, hi=math.pi / 4, unit="rad")
+        _real(ConfigError, c + "cd0", self.cd0, nonnegative=True, hi=1.0)
+        _real(ConfigError, c + "stall_angle", self.stall_angle, positive=True, hi=math.pi / 2, unit="rad")
+        _real(ConfigError, c + "lag_frequency", self.lag_frequency, positive=True, unit="per rev")
+        _real(ConfigError, c + "shaft_tilt", self.shaft_tilt, lo=-math.pi / 4, hi=math.pi / 4, unit="rad")
+        _vector(ConfigError, c + "hub_position", self.hub_position, 3, unit="m")
+        _real(ConfigError, c + "root_cutout", self.root_cutout, lo=0.0)
+        if not self.root_cutout < 1.0:
+            raise ConfigError(f"{c}root_cutout must be in [0, 1), got {self.root_cutout!r}")
+        _real(ConfigError, c + "hinge_offset", self.hinge_offset)
         if not 0.0 <= self.hinge_offset < self.root_cutout + 1e-12 or self.hinge_offset >= 1.0:
-            raise ValueError("RotorConfig.hinge_offset must lie in [0, root_cutout]")
-        if self.direction not in (1, -1):
-            raise ValueError(f"RotorConfig.direction must be +1 or -1, got {self.direction!r}")
-        if not self.flap_frequency >= 1.0:
-            raise ValueError("RotorConfig.flap_frequency must be >= 1 per rev")
+            raise ConfigError(f"{c}hinge_offset must lie in [0, root_cutout = {self.root_cutout:g}], "
+                              f"got {self.hinge_offset!r}")
+        if isinstance(self.direction, bool) or self.direction not in (1, -1):
+            raise ConfigError(f"{c}direction must be +1 or -1, got {self.direction!r}")
+        _real(ConfigError, c + "flap_frequency", self.flap_frequency, lo=1.0, hi=10.0, unit="per rev")
 
     # --- derived quantities -------------------------------------------------
     @property
@@ -167,6 +189,15 @@ class PropellerConfig:
     cd0: float = 0.010
     twist: float = math.radians(-30.0)
 
+    def __post_init__(self):
+        c = "PropellerConfig."
+        for attr, unit in (("radius", "m"), ("omega", "rad/s"), ("lift_slope", "1/rad")):
+            _real(ConfigError, c + attr, getattr(self, attr), positive=True, unit=unit)
+        _real(ConfigError, c + "solidity", self.solidity, positive=True, hi=1.0)
+        _real(ConfigError, c + "cd0", self.cd0, nonnegative=True, hi=1.0)
+        _real(ConfigError, c + "twist", self.twist, lo=-math.pi / 2, hi=math.pi / 2, unit="rad")
+        _vector(ConfigError, c + "position", self.position, 3, unit="m")
+
 
 @dataclass(frozen=True)
 class AircraftConfig:
@@ -200,13 +231,51 @@ class AircraftConfig:
     omega_cruise: float | None = None
 
     def __post_init__(self):
-        if not self.rotors:
-            raise ValueError("AircraftConfig needs at least one rotor")
-        if not self.mass > 0:
-            raise ValueError("AircraftConfig.mass must be positive")
+        c = "AircraftConfig."
+        if isinstance(self.rotors, RotorConfig):
+            raise ConfigError(f"{c}rotors must be a tuple of RotorConfig, got a single RotorConfig "
+                              "(write rotors=(rotor,))")
+        if not isinstance(self.rotors, (tuple, list)) or not self.rotors:
+            raise ConfigError(f"{c}rotors must be a non-empty tuple of RotorConfig (one or two), "
+                              f"got {self.rotors!r}")
+        for k, r in enumerate(self.rotors):
+            if not isinstance(r, RotorConfig):
+                raise ConfigError(f"{c}rotors[{k}] must be a RotorConfig, got {type(r).__name__}")
+        if len(self.rotors) > 2:
+            raise ConfigError(f"{c}rotors: one (single rotor) or two (coaxial) rotors are modelled, "
+                              f"got {len(self.rotors)}")
         names = [r.name for r in self.rotors]
         if len(set(names)) != len(names):
-            raise ValueError(f"rotor names must be unique, got {names}")
+            raise ConfigError(f"{c}rotors: rotor names must be unique, got {names}")
+        _real(ConfigError, c + "mass", self.mass, positive=True, unit="kg")
+        for attr in ("Ixx", "Iyy", "Izz"):
+            _real(ConfigError, c + attr, getattr(self, attr), positive=True, unit="kg m^2")
+        _real(ConfigError, c + "Ixz", self.Ixz, unit="kg m^2")
+        if not self.Ixx * self.Izz > self.Ixz ** 2:
+            raise ConfigError(f"{c}Ixz: the inertia tensor must be positive definite "
+                              f"(Ixz^2 < Ixx Izz), got Ixz = {self.Ixz!r}")
+        _real(ConfigError, c + "rho", self.rho, positive=True, hi=2.0, unit="kg/m^3")
+        for attr in ("fuselage_fx", "fuselage_fz", "htail_area", "vtail_area"):
+            _real(ConfigError, c + attr, getattr(self, attr), nonnegative=True, unit="m^2")
+        for attr in ("htail_lift_slope", "vtail_lift_slope"):
+            _real(ConfigError, c + attr, getattr(self, attr), nonnegative=True, unit="1/rad")
+        for attr in ("htail_position", "vtail_position"):
+            _vector(ConfigError, c + attr, getattr(self, attr), 3, unit="m")
+        if self.propeller is not None and not isinstance(self.propeller, PropellerConfig):
+            raise ConfigError(f"{c}propeller must be a PropellerConfig or None, got "
+                              f"{type(self.propeller).__name__}")
+        try:
+            n_ct = len(self.trim_ct)
+        except TypeError:
+            raise ConfigError(f"{c}trim_ct must be a tuple of thrust coefficients, got "
+                              f"{self.trim_ct!r}") from None
+        if n_ct not in (0, len(self.rotors)):
+            raise ConfigError(f"{c}trim_ct needs one thrust coefficient per rotor "
+                              f"({len(self.rotors)}) or none, got {n_ct}")
+        for k, ct in enumerate(self.trim_ct):
+            _real(ConfigError, f"{c}trim_ct[{k}]", ct, positive=True, hi=0.1)
+        if self.omega_cruise is not None:
+            _real(ConfigError, c + "omega_cruise", self.omega_cruise, positive=True, unit="rad/s")
 
     @property
     def weight(self) -> float:

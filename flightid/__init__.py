@@ -19,7 +19,8 @@ a flight-test record or a wind-tunnel record.
               ▼
     FitResult.model  ─►  control.StateSpace (Padé delays)  ─►  verify (TIC, RMS)
 """
-from .errors import DataError, IdentificationError, SingularInputError, UnstableModelError
+from .errors import (DataError, IdentificationError, InputValueError, SignalNameError,
+                     SingularInputError, UnstableModelError)
 from .sweeps import doublet, frequency_sweep, multistep_3211, shaped_noise
 from .response import MeasuredResponse, combine_responses, frequency_response
 from .joint import joint_input_output
@@ -31,7 +32,8 @@ from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
 
 __all__ = [
-    "DataError", "IdentificationError", "SingularInputError", "UnstableModelError",
+    "DataError", "IdentificationError", "InputValueError", "SignalNameError",
+    "SingularInputError", "UnstableModelError",
     "doublet", "frequency_sweep", "multistep_3211", "shaped_noise",
     "MeasuredResponse", "combine_responses", "frequency_response",
     "joint_input_output",

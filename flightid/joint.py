@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import IdentificationError, SingularInputError
+from ._validation import real_scalar
+from .errors import DataError, IdentificationError, SingularInputError
 from .response import MeasuredResponse
 
 __all__ = ["joint_input_output"]
@@ -55,6 +56,17 @@ def joint_input_output(y_over_theta: MeasuredResponse, u_over_theta: MeasuredRes
     ``|y/u_ij|`` instead of the sum of magnitudes; that can exceed one when the
     terms cancel, so we normalise by the sum, which keeps the result in [0, 1].
     """
+    for label, r in (("y_over_theta", y_over_theta), ("u_over_theta", u_over_theta)):
+        if not isinstance(r, MeasuredResponse):
+            raise DataError(f"{label} must be a MeasuredResponse (response with coherence), "
+                            f"got {type(r).__name__}")
+        # frdata/coherence are plain arrays a caller can overwrite after construction
+        if not np.all(np.isfinite(r.frdata)):
+            raise DataError(f"{label} holds {int(np.sum(~np.isfinite(r.frdata)))} NaN or infinite "
+                            "response value(s); the joint input-output method needs finite responses")
+        if not np.all(np.isfinite(r.coherence)):
+            raise DataError(f"{label} holds NaN or infinite coherence values")
+    max_condition = real_scalar("max_condition", max_condition, lo=1.0)
     if list(y_over_theta.input_labels) != list(u_over_theta.input_labels):
         raise IdentificationError(
             f"y/theta and u/theta must have the same controls in the same order: "
@@ -72,9 +84,13 @@ def joint_input_output(y_over_theta: MeasuredResponse, u_over_theta: MeasuredRes
             f"{n_u} input-outputs but only {n_theta} controls: the joint input-output "
             "method needs one independent sweep per input-output")
     if structural_zeros is not None:
-        mask = np.asarray(structural_zeros, dtype=bool)
+        mask = np.asarray(structural_zeros)
         if mask.shape != (n_u, n_theta):
-            raise IdentificationError(f"structural_zeros must be {n_u} x {n_theta}")
+            raise IdentificationError(f"structural_zeros must be {n_u} x {n_theta} "
+                                      f"(input-outputs x controls), got shape {mask.shape}")
+        if mask.dtype != bool and not np.all(np.isin(mask, (0, 1))):
+            raise IdentificationError("structural_zeros must hold booleans (True: known zero)")
+        mask = mask.astype(bool)
         U[:, mask] = 0.0
     sv = np.linalg.svd(U, compute_uv=False)
     cond = sv[:, 0] / np.maximum(sv[:, -1], 1e-300)

@@ -14,7 +14,8 @@ import pandas as pd
 import control
 from scipy.signal import czt
 
-from .errors import DataError
+from ._validation import integer, names_in, real_array, real_scalar
+from .errors import DataError, InputValueError, SignalNameError
 
 __all__ = ["MeasuredResponse", "frequency_response", "combine_responses"]
 
@@ -35,13 +36,33 @@ class MeasuredResponse(control.FrequencyResponseData):
 
     def __init__(self, response, omega, coherence, inputs, outputs, name=None):
         response = np.asarray(response, dtype=complex)
-        coherence = np.asarray(coherence, dtype=float)
         if response.ndim != 3:
-            raise ValueError("response must have shape (n_outputs, n_inputs, n_freq)")
+            raise DataError("response must have shape (n_outputs, n_inputs, n_freq), got "
+                            f"shape {response.shape}")
+        if not np.all(np.isfinite(response)):
+            raise DataError(f"response contains {int(np.sum(~np.isfinite(response)))} NaN or "
+                            "infinite value(s): a measured response must be finite")
+        coherence = real_array("coherence", coherence)
         if coherence.shape != response.shape:
-            raise ValueError(f"coherence shape {coherence.shape} differs from response shape {response.shape}")
-        super().__init__(response, np.asarray(omega, dtype=float), inputs=list(inputs),
-                         outputs=list(outputs), name=name, smooth=False)
+            raise DataError(f"coherence shape {coherence.shape} differs from response shape {response.shape}")
+        # round-off may put a coherence a hair outside [0, 1]; anything more is an error
+        if np.any(coherence < -1e-6) or np.any(coherence > 1 + 1e-6):
+            raise DataError(f"coherence must lie in [0, 1], got values in "
+                            f"[{coherence.min():.4g}, {coherence.max():.4g}]")
+        omega = real_array("omega", omega)
+        if omega.ndim != 1 or omega.size != response.shape[2]:
+            raise DataError(f"omega must be 1-D with {response.shape[2]} frequencies [rad/s], "
+                            f"got shape {omega.shape}")
+        if np.any(omega < 0) or np.any(np.diff(omega) <= 0):
+            raise DataError("omega must be non-negative and strictly increasing [rad/s]")
+        inputs, outputs = [str(n) for n in inputs], [str(n) for n in outputs]
+        if len(inputs) != response.shape[1] or len(outputs) != response.shape[0]:
+            raise DataError(f"{len(outputs)} output and {len(inputs)} input names for a "
+                            f"{response.shape[0]} x {response.shape[1]} response")
+        for kind, labels in (("input", inputs), ("output", outputs)):
+            if len(set(labels)) != len(labels):
+                raise DataError(f"{kind} names must be unique, got {labels}")
+        super().__init__(response, omega, inputs=inputs, outputs=outputs, name=name, smooth=False)
         self.coherence = np.clip(coherence, 0.0, 1.0)
 
     @property
@@ -51,20 +72,32 @@ class MeasuredResponse(control.FrequencyResponseData):
 
     def element(self, output, input):
         """Complex response and coherence of one (output, input) pair (names or indices)."""
-        i = output if isinstance(output, (int, np.integer)) else self.output_labels.index(output)
-        j = input if isinstance(input, (int, np.integer)) else self.input_labels.index(input)
+        i = self._index("output", output, self.output_labels)
+        j = self._index("input", input, self.input_labels)
         return self.frdata[i, j], self.coherence[i, j]
+
+    @staticmethod
+    def _index(kind, key, labels):
+        labels = list(labels)
+        if isinstance(key, (int, np.integer)) and not isinstance(key, bool):
+            if not -len(labels) <= key < len(labels):
+                raise SignalNameError(f"{kind} index {key} out of range for {len(labels)} {kind}s {labels}")
+            return int(key)
+        names_in(kind, [key], labels)
+        return labels.index(key)
 
     def select(self, outputs=None, inputs=None) -> "MeasuredResponse":
         """Sub-response with the named outputs/inputs (in the order given)."""
+        if isinstance(outputs, str):
+            outputs = [outputs]
+        if isinstance(inputs, str):
+            inputs = [inputs]
         outputs = list(self.output_labels) if outputs is None else list(outputs)
         inputs = list(self.input_labels) if inputs is None else list(inputs)
-        for o in outputs:
-            if o not in self.output_labels:
-                raise KeyError(f"no output {o!r}; have {self.output_labels}")
-        for i in inputs:
-            if i not in self.input_labels:
-                raise KeyError(f"no input {i!r}; have {self.input_labels}")
+        if not outputs or not inputs:
+            raise SignalNameError("select needs at least one output and one input name")
+        names_in("output", outputs, self.output_labels)
+        names_in("input", inputs, self.input_labels)
         oi = [self.output_labels.index(o) for o in outputs]
         ii = [self.input_labels.index(i) for i in inputs]
         return MeasuredResponse(self.frdata[np.ix_(oi, ii)], self.omega,
@@ -95,9 +128,9 @@ class MeasuredResponse(control.FrequencyResponseData):
 
 
 def _validate(t, u, y):
-    t = np.asarray(t, dtype=float)
-    u = np.asarray(u, dtype=float)
-    y = np.asarray(y, dtype=float)
+    t = real_array("t", t)
+    u = real_array("u", u)
+    y = real_array("y", y)
     if t.ndim != 1 or t.size < 16:
         raise DataError("t must be a 1-D array of at least 16 samples")
     if u.shape != t.shape:
@@ -106,9 +139,6 @@ def _validate(t, u, y):
         y = y[:, None]
     if y.ndim != 2 or y.shape[0] != t.size:
         raise DataError(f"y must have shape (len(t), n_outputs) = ({t.size}, n); got {y.shape}")
-    for name, arr in (("t", t), ("u", u), ("y", y)):
-        if not np.all(np.isfinite(arr)):
-            raise DataError(f"{name} contains NaN or infinite values")
     steps = np.diff(t)
     dt = steps.mean()
     if dt <= 0 or np.max(np.abs(steps - dt)) > 1e-6 * max(dt, 1e-12) + 1e-9:
@@ -206,19 +236,31 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
     closed-form stand-in for CIFER's optimised composite (Tischler & Remple §7.8).
     """
     t, u, y, dt = _validate(t, u, y)
-    if not (0 < w_min < w_max):
-        raise DataError(f"need 0 < w_min < w_max, got w_min={w_min}, w_max={w_max}")
+    w_min = real_scalar("w_min", w_min, positive=True, unit="rad/s")
+    w_max = real_scalar("w_max", w_max, positive=True, unit="rad/s")
+    if not w_min < w_max:
+        raise InputValueError(f"need 0 < w_min < w_max [rad/s], got w_min={w_min}, w_max={w_max}")
+    overlap = real_scalar("overlap", overlap, lo=0.0, hi=1.0, hi_open=True)
+    cycles_per_window = real_scalar("cycles_per_window", cycles_per_window, positive=True)
+    points_per_decade = real_scalar("points_per_decade", points_per_decade, positive=True)
+    n_windows = integer("n_windows", n_windows, minimum=1)
+    if n_points is not None:
+        n_points = integer("n_points", n_points, minimum=2)
+    if max_window is not None:
+        max_window = real_scalar("max_window", max_window, positive=True, unit="s")
+    if min_window is not None:
+        min_window = real_scalar("min_window", min_window, positive=True, unit="s")
+    if not isinstance(input_name, str) or not input_name:
+        raise InputValueError(f"input_name must be a non-empty string, got {input_name!r}")
     nyquist = np.pi / dt
     if w_max > 0.5 * nyquist:
         raise DataError(f"w_max = {w_max:.4g} rad/s is above half the Nyquist frequency "
                         f"({0.5 * nyquist:.4g} rad/s) for dt = {dt:.4g} s")
-    if not 0 <= overlap < 1:
-        raise DataError("overlap must be in [0, 1)")
     record = t[-1] - t[0]
     if windows is not None:
-        windows = np.sort(np.atleast_1d(np.asarray(windows, dtype=float)))[::-1]
-        if windows.size == 0 or not np.all(np.isfinite(windows)):
-            raise DataError("windows must be a non-empty sequence of finite lengths [s]")
+        windows = np.sort(np.atleast_1d(real_array("windows", windows, error=InputValueError)))[::-1]
+        if windows.size == 0 or windows.ndim != 1 or np.any(windows <= 0):
+            raise InputValueError("windows must be a non-empty 1-D sequence of positive lengths [s]")
         if windows[-1] < 32 * dt:
             raise DataError(f"window of {windows[-1]:.4g} s holds fewer than 32 samples (dt = {dt:.4g} s)")
         max_window = windows[0]
@@ -245,8 +287,14 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
     n_out = y.shape[1]
     if output_names is None:
         output_names = ["y"] if n_out == 1 else [f"y{k}" for k in range(n_out)]
+    if isinstance(output_names, str):
+        output_names = [output_names]
+    output_names = list(output_names)
     if len(output_names) != n_out:
         raise DataError(f"{len(output_names)} output names for {n_out} outputs")
+    if len(set(output_names)) != n_out or input_name in output_names:
+        raise DataError(f"output names must be unique and differ from the input name "
+                        f"{input_name!r}, got {output_names}")
 
     sum_w = np.zeros((n_out, n_points))
     acc_xx = np.zeros((n_out, n_points))
@@ -293,21 +341,26 @@ def combine_responses(responses, name=None) -> MeasuredResponse:
     All responses must share the frequency grid; outputs are matched by name
     (the union of outputs must be present in every response).
     """
+    if isinstance(responses, MeasuredResponse):
+        responses = [responses]
     responses = list(responses)
     if not responses:
-        raise ValueError("combine_responses needs at least one response")
+        raise DataError("combine_responses needs at least one response")
+    for k, r in enumerate(responses):
+        if not isinstance(r, MeasuredResponse):
+            raise DataError(f"responses[{k}] must be a MeasuredResponse, got {type(r).__name__}")
     omega = responses[0].omega
     outputs = list(responses[0].output_labels)
     inputs, data, coh = [], [], []
     for r in responses:
         if r.omega.shape != omega.shape or not np.allclose(r.omega, omega):
-            raise ValueError("responses must share one frequency grid to be combined")
+            raise DataError("responses must share one frequency grid to be combined")
         missing = [o for o in outputs if o not in r.output_labels]
         if missing:
-            raise ValueError(f"response to {r.input_labels} lacks outputs {missing}")
+            raise SignalNameError(f"response to {r.input_labels} lacks outputs {missing}")
         for j, u in enumerate(r.input_labels):
             if u in inputs:
-                raise ValueError(f"input {u!r} appears in more than one response")
+                raise DataError(f"input {u!r} appears in more than one response")
             inputs.append(u)
             idx = [r.output_labels.index(o) for o in outputs]
             data.append(r.frdata[idx, j, :])

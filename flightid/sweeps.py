@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import DataError
+from ._validation import integer, real_scalar
+from .errors import DataError, InputValueError
 
 __all__ = ["frequency_sweep", "shaped_noise", "doublet", "multistep_3211"]
 
@@ -17,12 +18,13 @@ __all__ = ["frequency_sweep", "shaped_noise", "doublet", "multistep_3211"]
 # where longer periods need more time to be identified.
 _C1 = 4.0
 _C2 = 0.0187
+#: largest record any input generator builds (8e7 samples = 640 MB of float64)
+_MAX_SAMPLES = 80_000_000
 
 
 def _check_positive(**values):
-    for name, value in values.items():
-        if not np.isfinite(value) or value <= 0:
-            raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    """Each value as a positive finite real float (InputValueError naming it otherwise)."""
+    return [real_scalar(name, value, positive=True) for name, value in values.items()]
 
 
 def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0,
@@ -63,18 +65,24 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
     u : ndarray
         The input.
     """
-    _check_positive(w_min=w_min, w_max=w_max, duration=duration, dt=dt)
+    w_min, w_max, duration, dt = _check_positive(w_min=w_min, w_max=w_max, duration=duration, dt=dt)
+    amplitude = real_scalar("amplitude", amplitude)
+    trim_start = real_scalar("trim_start", trim_start, nonnegative=True, unit="s")
+    trim_end = real_scalar("trim_end", trim_end, nonnegative=True, unit="s")
+    noise_fraction = real_scalar("noise_fraction", noise_fraction, nonnegative=True)
+    fade_cycles = real_scalar("fade_cycles", fade_cycles, positive=True)
     if not w_max > w_min:
-        raise ValueError(f"w_max ({w_max}) must exceed w_min ({w_min})")
-    if trim_start < 0 or trim_end < 0:
-        raise ValueError("trim_start and trim_end must be >= 0")
+        raise InputValueError(f"w_max ({w_max}) must exceed w_min ({w_min}) [rad/s]")
     if duration < 4 * np.pi / w_min:
-        raise ValueError(f"duration {duration:.3g} s holds fewer than two periods of "
+        raise InputValueError(f"duration {duration:.3g} s holds fewer than two periods of "
                          f"w_min = {w_min:.3g} rad/s (needs >= {4 * np.pi / w_min:.3g} s)")
     if dt > 2 * np.pi / w_max / 8:
-        raise ValueError(f"dt = {dt:.3g} s gives fewer than 8 samples per period at w_max = "
+        raise InputValueError(f"dt = {dt:.3g} s gives fewer than 8 samples per period at w_max = "
                          f"{w_max:.3g} rad/s (needs dt <= {2 * np.pi / w_max / 8:.3g} s)")
     n_total = int(round((trim_start + duration + trim_end) / dt)) + 1
+    if n_total > _MAX_SAMPLES:
+        raise InputValueError(f"the record would hold {n_total:.3g} samples (> {_MAX_SAMPLES:.0e}): "
+                              "check dt [s] and the durations [s]")
     t = np.arange(n_total) * dt
     tau = t - trim_start
     inside = (tau >= 0) & (tau <= duration)
@@ -93,9 +101,7 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
     env[m] = 0.5 * (1 - np.cos(np.pi * (duration - tau[m]) / fade_out))
     u = u * env
     if noise_fraction:
-        if noise_fraction < 0:
-            raise ValueError("noise_fraction must be >= 0")
-        noise = shaped_noise(n_total, dt, w_min, w_max, rms=noise_fraction * amplitude, seed=seed)
+        noise = shaped_noise(n_total, dt, w_min, w_max, rms=noise_fraction * abs(amplitude), seed=seed)
         u = u + np.where(inside, noise * env, 0.0)
     return t, u
 
@@ -107,9 +113,11 @@ def shaped_noise(n, dt, w_min, w_max, rms=1.0, seed=None):
     frequency domain (zeroing FFT bins outside the band), so the band edges are
     exact. ``seed`` makes it reproducible.
     """
-    if n < 2:
-        raise ValueError("shaped_noise needs n >= 2 samples")
-    _check_positive(dt=dt, w_min=w_min, w_max=w_max)
+    n = integer("n", n, minimum=2)
+    dt, w_min, w_max = _check_positive(dt=dt, w_min=w_min, w_max=w_max)
+    rms = real_scalar("rms", rms, nonnegative=True)
+    if not w_max > w_min:
+        raise InputValueError(f"w_max ({w_max}) must exceed w_min ({w_min}) [rad/s]")
     rng = np.random.default_rng(seed)
     white = rng.standard_normal(n)
     spec = np.fft.rfft(white)
@@ -118,17 +126,24 @@ def shaped_noise(n, dt, w_min, w_max, rms=1.0, seed=None):
     shaped = np.fft.irfft(spec, n)
     std = shaped.std()
     if std == 0:
-        raise ValueError("the band [w_min, w_max] holds no frequency bin of this record")
+        raise InputValueError("the band [w_min, w_max] holds no frequency bin of this record: "
+                              "lengthen the record (n * dt) or widen the band")
     return shaped * (rms / std)
 
 
 def _pulses(levels, amplitude, pulse_width, dt, duration, start):
-    _check_positive(pulse_width=pulse_width, dt=dt, duration=duration)
-    if start < 0:
-        raise ValueError("start must be >= 0")
+    pulse_width, dt, duration = _check_positive(pulse_width=pulse_width, dt=dt, duration=duration)
+    amplitude = real_scalar("amplitude", amplitude)
+    start = real_scalar("start", start, nonnegative=True, unit="s")
+    if pulse_width < dt:
+        raise InputValueError(f"pulse_width ({pulse_width:.3g} s) must be at least one sample "
+                              f"(dt = {dt:.3g} s)")
     end = start + pulse_width * sum(abs(n) for n, _ in levels)
     if end > duration:
         raise DataError(f"the input ends at {end:.3g} s, after the record ({duration:.3g} s)")
+    if duration / dt > _MAX_SAMPLES:
+        raise InputValueError(f"the record would hold {duration / dt:.3g} samples (> {_MAX_SAMPLES:.0e}): "
+                              "check dt and duration [s]")
     t = np.arange(int(round(duration / dt)) + 1) * dt
     u = np.zeros_like(t)
     t0 = start

@@ -14,7 +14,8 @@ import pandas as pd
 import control
 from matplotlib.figure import Figure
 
-from .errors import DataError
+from ._validation import names_in, real_array
+from .errors import DataError, SignalNameError
 from .structures import ModelStructure
 
 __all__ = ["verify", "VerificationResult", "theil_inequality"]
@@ -22,8 +23,11 @@ __all__ = ["verify", "VerificationResult", "theil_inequality"]
 
 def theil_inequality(predicted, measured):
     """TIC = rms(p - m) / (rms(p) + rms(m)); 0 is a perfect match, 1 the worst."""
-    p = np.asarray(predicted, float)
-    m = np.asarray(measured, float)
+    p = real_array("predicted", predicted)
+    m = real_array("measured", measured)
+    if p.shape != m.shape or p.size == 0:
+        raise DataError(f"predicted and measured must be non-empty and of one shape, got "
+                        f"{p.shape} and {m.shape}")
     den = np.sqrt(np.mean(p ** 2)) + np.sqrt(np.mean(m ** 2))
     if den == 0:
         return 0.0
@@ -61,6 +65,16 @@ class VerificationResult:
         return fig
 
 
+def _signals(kind, data, names):
+    """(n_signals, n) float array from a DataFrame (columns ``names``) or an array."""
+    if isinstance(data, pd.DataFrame):
+        names_in(f"{kind} column", names, data.columns)
+        data = data[names].to_numpy().T
+    elif isinstance(data, pd.Series):
+        data = data.to_numpy()
+    return np.atleast_2d(real_array(kind, data))
+
+
 def verify(model, t, inputs, outputs, *, input_names=None, output_names=None,
            remove_initial=True) -> VerificationResult:
     """Simulate ``model`` with measured ``inputs`` and compare with ``outputs``.
@@ -86,20 +100,34 @@ def verify(model, t, inputs, outputs, *, input_names=None, output_names=None,
     """
     if isinstance(model, ModelStructure):
         model = model.to_statespace()
-    t = np.asarray(t, float)
-    input_names = input_names or list(model.input_labels)
-    output_names = output_names or list(model.output_labels)
-    u = inputs[input_names].to_numpy().T if isinstance(inputs, pd.DataFrame) else np.atleast_2d(np.asarray(inputs, float))
-    z = outputs[output_names].to_numpy().T if isinstance(outputs, pd.DataFrame) else np.atleast_2d(np.asarray(outputs, float))
+    if not isinstance(model, control.LTI):
+        raise DataError(f"model must be a python-control LTI system or a ModelStructure, got "
+                        f"{type(model).__name__}")
+    if not model.isctime():
+        raise DataError("model must be continuous-time (dt = 0)")
+    if isinstance(model, control.StateSpace) and not all(
+            np.all(np.isfinite(np.asarray(m, float))) for m in (model.A, model.B, model.C, model.D)):
+        raise DataError("model matrices contain NaN or infinite values")
+    t = real_array("t", t)
+    if t.ndim != 1 or t.size < 2:
+        raise DataError(f"t must be a 1-D array of at least 2 samples [s], got shape {t.shape}")
+    input_names = list(input_names) if input_names else list(model.input_labels)
+    output_names = list(output_names) if output_names else list(model.output_labels)
+    if len(input_names) != model.ninputs:
+        raise SignalNameError(f"{len(input_names)} input names {input_names} for a model with "
+                              f"{model.ninputs} inputs {list(model.input_labels)}")
+    if len(output_names) != model.noutputs:
+        raise SignalNameError(f"{len(output_names)} output names {output_names} for a model with "
+                              f"{model.noutputs} outputs {list(model.output_labels)}")
+    u = _signals("inputs", inputs, input_names)
+    z = _signals("outputs", outputs, output_names)
     if u.shape != (model.ninputs, t.size):
         raise DataError(f"inputs must be ({model.ninputs}, {t.size}), got {u.shape}")
     if z.shape != (model.noutputs, t.size):
         raise DataError(f"outputs must be ({model.noutputs}, {t.size}), got {z.shape}")
-    if not (np.all(np.isfinite(u)) and np.all(np.isfinite(z))):
-        raise DataError("inputs/outputs contain NaN or infinite values")
     steps = np.diff(t)
-    if np.max(np.abs(steps - steps.mean())) > 1e-6 * steps.mean():
-        raise DataError("t must be uniformly sampled")
+    if steps.min() <= 0 or np.max(np.abs(steps - steps.mean())) > 1e-6 * steps.mean():
+        raise DataError("t must be increasing and uniformly sampled [s]")
     if remove_initial:
         u = u - u[:, :1]
         z = z - z[:, :1]

@@ -11,16 +11,18 @@
 """
 from .mixing import PILOT_INPUTS, ROTOR_CONTROLS, mixing_matrix
 from .model import BODY_STATES, Helicopter, HelicopterSettings
-from .trim import TrimCondition, TrimError, TrimResult, trim
-from .linearize import default_steps, linearize, modes
+from .trim import TrimCondition, TrimError, TrimInputError, TrimResult, trim
+from .linearize import (LinearizeInputError, NotAtTrimError, NotAtTrimWarning, default_steps,
+                        linearize, modes, trim_derivatives)
 from .coupling import CouplingError, coupling_numerator, residualize
 from .mode_physics import classify_modes, flap_mode_damping, flap_mode_sensitivity, pair_modes
 from .responses import DEFAULT_RESPONSE_PAIRS, BareAirframeComparison, compare_bare_airframe
 from .rotor_stand import RotorStandError, ShaftFixedRotors
 
 __all__ = ["PILOT_INPUTS", "ROTOR_CONTROLS", "mixing_matrix", "BODY_STATES", "Helicopter",
-           "HelicopterSettings", "TrimCondition", "TrimError", "TrimResult", "trim",
-           "default_steps", "linearize", "modes", "CouplingError", "coupling_numerator", "residualize",
+           "HelicopterSettings", "TrimCondition", "TrimError", "TrimInputError", "TrimResult", "trim",
+           "default_steps", "linearize", "modes", "trim_derivatives", "LinearizeInputError",
+           "NotAtTrimError", "NotAtTrimWarning", "CouplingError", "coupling_numerator", "residualize",
            "classify_modes", "flap_mode_damping", "flap_mode_sensitivity", "pair_modes",
            "DEFAULT_RESPONSE_PAIRS", "BareAirframeComparison", "compare_bare_airframe",
            "RotorStandError", "ShaftFixedRotors"]

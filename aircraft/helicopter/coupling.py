@@ -29,13 +29,51 @@ def coupling_numerator(sys, output, input, constrained):
         Named signals; strictly proper (D = 0) in the constrained outputs.
     output, input : str
     constrained : dict
-        Constrained output name -> control used to hold it.
+        Constrained output name -> control used to hold it.  Each control holds
+        one output; neither the swept ``input`` nor the plant ``output`` may
+        appear in it (a swept control that also holds a loop is no input any
+        more: the result would be an all-zero plant).
+
+    Raises
+    ------
+    CouplingError
+        Unknown names, a control used twice or also swept, the output itself
+        constrained, a feedthrough (D != 0) in a constrained loop, non-finite
+        matrices, or C_c B_c singular.
     """
-    out_idx = [sys.output_labels.index(o) for o in constrained] if constrained else []
-    in_idx = [sys.input_labels.index(i) for i in constrained.values()] if constrained else []
-    if output not in sys.output_labels or input not in sys.input_labels:
-        raise CouplingError(f"unknown output {output!r} or input {input!r}")
-    a, b, c = np.asarray(sys.A), np.asarray(sys.B), np.asarray(sys.C)
+    if not isinstance(sys, control.StateSpace):
+        raise CouplingError(f"sys must be a control.StateSpace with named signals, got {type(sys).__name__}")
+    if constrained is None:
+        constrained = {}
+    if not isinstance(constrained, dict):
+        raise CouplingError(f"constrained must be a dict {{output: holding control}}, got {constrained!r}")
+    outputs, inputs = list(sys.output_labels), list(sys.input_labels)
+    if output not in outputs:
+        raise CouplingError(f"unknown output {output!r}; the system has outputs {outputs}")
+    if input not in inputs:
+        raise CouplingError(f"unknown input {input!r}; the system has inputs {inputs}")
+    unknown_o = [o for o in constrained if o not in outputs]
+    unknown_i = [i for i in constrained.values() if i not in inputs]
+    if unknown_o or unknown_i:
+        raise CouplingError(f"constrained names unknown: outputs {unknown_o}, controls {unknown_i}; "
+                            f"the system has outputs {outputs} and inputs {inputs}")
+    if output in constrained:
+        raise CouplingError(f"the plant output {output!r} cannot also be a constrained output")
+    if input in constrained.values():
+        held = [o for o, i in constrained.items() if i == input]
+        raise CouplingError(f"the swept input {input!r} is also the control holding {held}: "
+                            "a control cannot be both the plant input and a loop's control")
+    if len(set(constrained.values())) != len(constrained):
+        raise CouplingError(f"each constrained output needs its own control, got {constrained}")
+    mats = [np.asarray(m) for m in (sys.A, sys.B, sys.C, sys.D)]
+    if any(np.iscomplexobj(m) or not np.all(np.isfinite(m)) for m in mats):
+        raise CouplingError("sys matrices contain complex, NaN or infinite values")
+    out_idx = [outputs.index(o) for o in constrained]
+    in_idx = [inputs.index(i) for i in constrained.values()]
+    if out_idx and np.any(mats[3][np.ix_(out_idx, in_idx + [inputs.index(input)])] != 0):
+        raise CouplingError("the constrained outputs have a feedthrough (D != 0) from the controls: "
+                            "the tight-loop construction needs them strictly proper")
+    a, b, c = (np.asarray(m, float) for m in mats[:3])
     j = sys.input_labels.index(input)
     i = sys.output_labels.index(output)
     if not constrained:
@@ -66,8 +104,23 @@ def residualize(sys, cutoff):
     design a plant without the far-off dynamics (e.g. the unstable high-frequency
     poles a coupling numerator inherits from non-minimum-phase zeros of the
     constraining loops, ~100 rad/s for this hingeless coaxial).
+
+    Raises
+    ------
+    CouplingError
+        ``sys`` is not a StateSpace, has non-finite matrices, or ``cutoff`` is not
+        a positive finite frequency [rad/s].
     """
+    import math
+    import numbers
     from scipy.linalg import schur, solve_sylvester
+    if not isinstance(sys, control.StateSpace):
+        raise CouplingError(f"sys must be a control.StateSpace, got {type(sys).__name__}")
+    if isinstance(cutoff, bool) or not isinstance(cutoff, numbers.Real) or not math.isfinite(cutoff) \
+            or cutoff <= 0:
+        raise CouplingError(f"cutoff must be a positive finite frequency [rad/s], got {cutoff!r}")
+    if not all(np.all(np.isfinite(np.asarray(m))) for m in (sys.A, sys.B, sys.C, sys.D)):
+        raise CouplingError("sys matrices contain NaN or infinite values")
     a, b, c, d = (np.asarray(m, float) for m in (sys.A, sys.B, sys.C, sys.D))
     t, z, n_slow = schur(a, output="real", sort=lambda re, im: np.hypot(re, im) < cutoff)
     if n_slow == a.shape[0]:

@@ -13,16 +13,25 @@ derivatives / Omega).
 """
 from __future__ import annotations
 
+import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
 
+from .._validation import integer as _integer, real as _real
+from ..inflow.pitt_peters import InflowError
 from .mixing import PILOT_INPUTS, mixing_matrix
 from .model import Helicopter
 
-__all__ = ["TrimCondition", "TrimResult", "TrimError", "trim"]
+__all__ = ["TrimCondition", "TrimResult", "TrimError", "TrimInputError", "trim"]
+
+#: largest blade loading C_T/sigma a trim is attempted at: sections stall at
+#: ``stall_angle`` (c_l,max = a alpha_s ~ 1.2 at 12 deg), and a uniformly loaded
+#: blade then carries at most C_T/sigma = c_l,max / 6 ~ 0.2; 25 % margin above it
+_STALL_MARGIN = 1.25
 
 
 class TrimError(RuntimeError):
@@ -31,6 +40,14 @@ class TrimError(RuntimeError):
     def __init__(self, message, residuals=None):
         super().__init__(message)
         self.residuals = residuals
+
+
+class TrimInputError(ValueError):
+    """A trim argument (condition, tolerance, budget) is NaN, infinite, complex or out of range."""
+
+
+class _BudgetExceeded(Exception):
+    """Internal: the trim's wall-clock budget ran out inside the solver."""
 
 
 @dataclass(frozen=True)
@@ -45,8 +62,11 @@ class TrimCondition:
     lateral_cyclic_difference: float = 0.0
 
     def __post_init__(self):
-        if self.speed < 0:
-            raise ValueError(f"speed must be >= 0 m/s, got {self.speed}")
+        _real(TrimInputError, "TrimCondition.speed", self.speed, nonnegative=True, hi=200.0, unit="m/s")
+        _real(TrimInputError, "TrimCondition.rotor_aoa", self.rotor_aoa, lo=-math.pi / 6,
+              hi=math.pi / 6, unit="rad")
+        _real(TrimInputError, "TrimCondition.lateral_cyclic_difference",
+              self.lateral_cyclic_difference, lo=-math.pi / 6, hi=math.pi / 6, unit="rad")
 
 
 @dataclass
@@ -89,8 +109,64 @@ def _controls(heli, pilot, condition):
     return np.asarray(pilot, float)
 
 
-def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30) -> TrimResult:
-    """Trim ``heli`` at ``condition``; raise :class:`TrimError` naming the residuals if it fails."""
+def _check_blade_loading(heli):
+    """Refuse at once a weight no rotor of this aircraft can carry (C_T/sigma vs stall)."""
+    share = heli.config.weight / len(heli.rotors)
+    for rm in heli.rotors:
+        rc = rm.config
+        ct = share / rm.scale_t
+        limit = rc.lift_slope * rc.stall_angle / 6.0 * _STALL_MARGIN
+        if ct / rc.solidity > limit:
+            raise TrimError(
+                f"no trim: carrying the weight ({heli.config.weight:.4g} N) needs a blade loading "
+                f"C_T/sigma = {ct / rc.solidity:.3g} on rotor {rc.name!r}, above the {limit:.3g} its "
+                f"blades can reach before stalling at {math.degrees(rc.stall_angle):.3g} deg "
+                f"(C_T = {ct:.4g}, sigma = {rc.solidity:.4g}); reduce the mass or enlarge the rotor",
+                {"CT_required": float(ct), "CT_over_sigma": float(ct / rc.solidity)})
+
+
+def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, max_nfev=None,
+         max_time=60.0) -> TrimResult:
+    """Trim ``heli`` at ``condition``; raise :class:`TrimError` naming the residuals if it fails.
+
+    Parameters
+    ----------
+    heli : Helicopter
+    condition : TrimCondition
+    tol : float
+        Convergence tolerance on every scaled residual (body accelerations [SI],
+        flap accelerations / Omega^2, inflow derivatives / Omega).
+    max_iter : int
+        Newton polishing iterations after Levenberg-Marquardt (>= 1).
+    max_nfev : int, optional
+        Model evaluations (:meth:`Helicopter.derivatives` calls, finite-difference
+        Jacobians included) allowed to the whole trim; default ``50 (n + 1)`` for
+        ``n`` unknowns, ~1,000 (trims that converge use 70-250, measured).
+    max_time : float or None
+        Wall-clock budget [s] of the whole trim; None: only the evaluation
+        budgets bound it.
+
+    Raises
+    ------
+    TrimError
+        No trim within the budgets (message and ``.residuals``: the largest
+        residuals by equation), or a weight the blades cannot carry (refused
+        before solving).
+    TrimInputError
+        A bad argument.
+    """
+    if not isinstance(heli, Helicopter):
+        raise TrimInputError(f"heli must be a Helicopter, got {type(heli).__name__}")
+    if not isinstance(condition, TrimCondition):
+        raise TrimInputError(f"condition must be a TrimCondition, got {type(condition).__name__}")
+    tol = _real(TrimInputError, "tol", tol, positive=True)
+    max_iter = _integer(TrimInputError, "max_iter", max_iter, minimum=1)
+    if max_nfev is not None:
+        max_nfev = _integer(TrimInputError, "max_nfev", max_nfev, minimum=1)
+    if max_time is not None:
+        max_time = _real(TrimInputError, "max_time", max_time, positive=True, unit="s")
+    _check_blade_loading(heli)
+    t_start = time.perf_counter()
     cfg = heli.config
     # an inflow model frozen at an earlier trim (ClimbingLowerRotor holds its
     # climb there) must be released first, or this trim inherits that condition
@@ -108,7 +184,11 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30) -> 
         loads0 += [ct, 0.0, 0.0]
     from ..inflow.base import RotorOperatingPoint
     ops0 = tuple(RotorOperatingPoint(omega=rm.config.omega) for rm in heli.rotors)
-    xin0 = heli.inflow.steady_state(np.array(loads0), ops0)
+    try:
+        xin0 = heli.inflow.steady_state(np.array(loads0), ops0)
+    except InflowError as err:
+        raise TrimError(f"no trim start: the inflow model has no steady state at the weight's "
+                        f"thrust ({err})") from err
     rc = heli.rotors[0].config
     ct0 = loads0[0]
     theta75 = 6 * ct0 / (rc.solidity * rc.lift_slope) + 1.5 * np.sqrt(ct0 / 2)
@@ -153,13 +233,36 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30) -> 
         scale[9 + 8 * k:9 + 8 * k + 8] = rm.config.omega ** 2
     scale[heli.n_rigid:] = rc.omega
 
+    keep = list(range(6)) + [9 + 8 * k + 4 + j for k in range(nrot) for j in range(4)] \
+        + list(range(heli.n_rigid, heli.n_states))
+    refused = {"count": 0, "last": None}
+    evaluations = {"n": 0, "budget": None}
+
     def residual(z):
         x, pilot = unpack(z)
         xdot = heli.derivatives(x, _controls(heli, pilot, condition))
-        res = xdot / scale
-        keep = list(range(6)) + [9 + 8 * k + 4 + j for k in range(nrot) for j in range(4)] \
-            + list(range(heli.n_rigid, heli.n_states))
-        return res[keep]
+        return (xdot / scale)[keep]
+
+    def guarded(z):
+        # the solver may probe states outside the inflow model's domain (flow up
+        # through the disk): a large residual there makes it step back instead of
+        # dying with the inflow model's error; a spent budget stops it
+        if max_time is not None and time.perf_counter() - t_start > max_time:
+            raise _BudgetExceeded(f"the time budget max_time = {max_time:g} s ran out")
+        evaluations["n"] += 1
+        if evaluations["budget"] is not None and evaluations["n"] > evaluations["budget"]:
+            raise _BudgetExceeded(f"the evaluation budget max_nfev = {evaluations['budget']} ran out")
+        try:
+            r = residual(z)
+        except InflowError as err:
+            refused["count"] += 1
+            refused["last"] = str(err)
+            return np.full(len(keep), 1e3)
+        if not np.all(np.isfinite(r)):
+            refused["count"] += 1
+            refused["last"] = "non-finite state derivatives"
+            return np.full(len(keep), 1e3)
+        return r
 
     z0 = list(pilot0[:4])
     if coax and forward:
@@ -173,29 +276,72 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30) -> 
     z0 = np.array(z0, float)
     if len(residual(z0)) != len(z0):
         raise TrimError(f"trim problem is not square: {len(residual(z0))} equations, {len(z0)} unknowns")
-    sol = least_squares(residual, z0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=4000)
+    names = ["udot", "vdot", "wdot", "pdot", "qdot", "rdot"] + \
+        [f"flap_accel_{i}" for i in range(4 * nrot)] + list(heli.inflow.state_names)
+
+    def fail(why, z):
+        try:
+            r = residual(z)
+        except InflowError:
+            r = np.full(len(keep), np.nan)
+        worst = {names[i]: float(r[i]) for i in np.argsort(-np.abs(r))[:5]} \
+            if np.all(np.isfinite(r)) else {}
+        extra = ""
+        if refused["count"]:
+            extra = (f"; the inflow model refused {refused['count']} trial state(s), last: "
+                     f"{refused['last']}")
+        size = f"max residual {np.max(np.abs(r)):.3g} > {tol:g}" if worst else "residual undefined there"
+        raise TrimError(f"trim did not converge: {why} ({size}, {time.perf_counter() - t_start:.1f} s); "
+                        f"largest residuals: {worst}{extra}", worst)
+
+    n_unknowns = z0.size
+    budget = max_nfev if max_nfev is not None else 50 * (n_unknowns + 1)
+    evaluations["budget"] = budget
+    best_z = {"z": z0, "r": np.inf}
+
+    def tracked(z):
+        r = guarded(z)
+        if np.max(np.abs(r)) < best_z["r"]:
+            best_z["z"], best_z["r"] = np.array(z, float), float(np.max(np.abs(r)))
+        return r
+
+    try:
+        sol = least_squares(tracked, z0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                            max_nfev=budget)
+    except _BudgetExceeded as why:
+        fail(f"{why} in Levenberg-Marquardt", best_z["z"])
     z = sol.x
-    # Newton polishing with a central-difference Jacobian
-    for _ in range(max_iter):
+    # Newton polishing with a central-difference Jacobian; it stops when it
+    # stalls (three steps without halving the residual) instead of running on
+    stalled = 0
+    try:
+        best = np.max(np.abs(guarded(z)))
+        for _ in range(max_iter):
+            r = guarded(z)
+            if np.max(np.abs(r)) < tol or stalled >= 3:
+                break
+            jac = np.empty((r.size, z.size))
+            for j in range(z.size):
+                h = 1e-7 * max(1.0, abs(z[j]))
+                e = np.zeros_like(z)
+                e[j] = h
+                jac[:, j] = (guarded(z + e) - guarded(z - e)) / (2 * h)
+            z = z - np.linalg.lstsq(jac, r, rcond=None)[0]
+            now = np.max(np.abs(guarded(z)))
+            stalled = stalled + 1 if now > 0.5 * best else 0
+            best = min(best, now)
+    except _BudgetExceeded as why:
+        fail(f"{why} in Newton polishing", best_z["z"])
+    try:
         r = residual(z)
-        if np.max(np.abs(r)) < tol:
-            break
-        jac = np.empty((r.size, z.size))
-        for j in range(z.size):
-            h = 1e-7 * max(1.0, abs(z[j]))
-            e = np.zeros_like(z)
-            e[j] = h
-            jac[:, j] = (residual(z + e) - residual(z - e)) / (2 * h)
-        z = z - np.linalg.lstsq(jac, r, rcond=None)[0]
-    r = residual(z)
+    except InflowError as err:
+        fail(f"the last iterate is outside the inflow model's domain ({err}); residuals at the "
+             "best iterate", best_z["z"])
     x, pilot = unpack(z)
     u = _controls(heli, pilot, condition)
     if not np.all(np.isfinite(r)) or np.max(np.abs(r)) > tol:
-        names = ["udot", "vdot", "wdot", "pdot", "qdot", "rdot"] + \
-            [f"flap_accel_{i}" for i in range(4 * nrot)] + list(heli.inflow.state_names)
-        worst = {names[i]: float(r[i]) for i in np.argsort(-np.abs(r))[:5]}
-        raise TrimError(f"trim did not converge (max residual {np.max(np.abs(r)):.3g} > {tol}); "
-                        f"largest residuals: {worst}", worst)
+        fail(f"no solution within {evaluations['n']} model evaluations (budget {budget}) and "
+             f"{max_iter} Newton steps", z)
     _, extra = heli.evaluate(x, u)
     loads = {n: float(v) for n, v in zip(heli.inflow.load_names, extra["loads"])}
     loads.update({k: float(v) for k, v in extra.items() if k.startswith(("torque", "CQ"))})

@@ -18,6 +18,8 @@ Architecture
     outputs.py      blade-sum loads and inflow harmonics (Eqs. 2.22, 2.25, 2.26)
     trim.py         trim_wake (thrust / coaxial torque balance, zero hub moments),
                     run_wake (prescribed controls -> pandas.DataFrame)
+    cache.py        checked disk cache: atomic writes, schema + code version, SHA-256,
+                    finite values; bad entries warned about and recomputed
     sweeps.py       run_sweeps: sweeps/doublets in parallel processes with tqdm and
                     a disk cache keyed on a hash of every input
 
@@ -26,11 +28,13 @@ Conventions follow :mod:`aircraft.inflow.base` (each rotor in its own frame).
 from .settings import WakeSettings, FlightCondition, WakeSettingsError
 from .biot_savart import segment_velocity, segment_velocity_numpy, core_radius
 from .wake import FreeVortexWake, WakeDivergedError
-from .trim import WakeTrim, WakeTrimError, trim_wake, run_wake
-from .sweeps import run_sweeps, SweepSpec
+from .trim import WakeTrim, WakeTrimError, WakeInputError, trim_wake, run_wake
+from .sweeps import run_sweeps, SweepSpec, SweepSpecError
+from .cache import CACHE_ENV, CacheWarning, WakeCache, WakeCacheError, resolve_cache_dir
 
 __all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError",
            "segment_velocity", "segment_velocity_numpy", "core_radius",
            "FreeVortexWake", "WakeDivergedError",
-           "WakeTrim", "WakeTrimError", "trim_wake", "run_wake",
-           "run_sweeps", "SweepSpec"]
+           "WakeTrim", "WakeTrimError", "WakeInputError", "trim_wake", "run_wake",
+           "run_sweeps", "SweepSpec", "SweepSpecError",
+           "CACHE_ENV", "CacheWarning", "WakeCache", "WakeCacheError", "resolve_cache_dir"]

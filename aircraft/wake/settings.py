@@ -4,6 +4,8 @@ from __future__ import annotations
 from dataclasses import dataclass, asdict
 import math
 
+from .._validation import integer as _integer, real as _real
+
 __all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError"]
 
 
@@ -103,6 +105,25 @@ class WakeSettings:
     far_wake_step: float = math.radians(30.0)
 
     def __post_init__(self):
+        e = WakeSettingsError
+        for name in ("azimuth_step", "wake_revolutions", "near_wake_extent",
+                     "near_wake_extent_forward", "core_radius", "near_wake_core",
+                     "kinematic_viscosity", "initial_wake_kappa", "far_wake_step"):
+            _real(e, f"WakeSettings.{name}", getattr(self, name), positive=True)
+        for name in ("buffer_revolutions", "core_delta", "far_wake_revolutions"):
+            _real(e, f"WakeSettings.{name}", getattr(self, name), nonnegative=True)
+        for name in ("near_wake_contraction", "free_flapping"):
+            if not isinstance(getattr(self, name), bool):
+                raise e(f"WakeSettings.{name} must be True or False, got {getattr(self, name)!r}")
+        _integer(e, "WakeSettings.n_elements", self.n_elements, minimum=2)
+        # kappa is an induced-power factor: 1 is ideal, real rotors 1.05-1.3
+        _real(e, "WakeSettings.initial_wake_kappa", self.initial_wake_kappa, lo=1.0, hi=3.0)
+        # a wake of hundreds of revolutions is a typo, and would not fit in memory
+        _real(e, "WakeSettings.wake_revolutions", self.wake_revolutions, hi=100.0)
+        _real(e, "WakeSettings.buffer_revolutions", self.buffer_revolutions, hi=100.0)
+        _real(e, "WakeSettings.far_wake_revolutions", self.far_wake_revolutions, hi=1000.0)
+        for name in ("near_wake_extent", "near_wake_extent_forward"):
+            _real(e, f"WakeSettings.{name}", getattr(self, name), hi=2 * math.pi)
         if not 0.0 < self.azimuth_step <= math.radians(30.0):
             raise WakeSettingsError(
                 f"azimuth_step must be in (0, 30 deg] [rad], got {self.azimuth_step!r}")
@@ -169,10 +190,11 @@ class FlightCondition:
     alpha: float = 0.0
 
     def __post_init__(self):
-        if self.speed < 0 or not math.isfinite(self.speed):
-            raise WakeSettingsError(f"speed must be a finite value >= 0 [m/s], got {self.speed!r}")
+        _real(WakeSettingsError, "FlightCondition.speed", self.speed, nonnegative=True, unit="m/s")
+        _real(WakeSettingsError, "FlightCondition.alpha", self.alpha, unit="rad")
         if abs(self.alpha) > math.radians(30.0):
-            raise WakeSettingsError(f"alpha must be within +-30 deg [rad], got {self.alpha!r}")
+            raise WakeSettingsError(f"FlightCondition.alpha must be within +-30 deg (+-0.5236 rad) "
+                                    f"[rad], got {self.alpha!r}")
 
     def to_dict(self) -> dict:
         return asdict(self)

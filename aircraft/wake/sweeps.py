@@ -1,5 +1,15 @@
 """Sweep driver: frequency sweeps and doublets on the trimmed wake, in parallel.
 
+The cache (:mod:`aircraft.wake.cache`) lives in the ``cache_dir`` argument, else
+the folder named by the environment variable ``ROTORWAKE_CACHE_DIR``, else
+``.cache/wake``; its keys also hold a digest of the wake's source code.
+Entries are written atomically by the worker that computed them as soon as each
+run finishes, and checked (schema, code version, key, length, SHA-256, finite
+values) on every read, so a sweep set killed midway and started again reuses
+every finished run, recomputes only the rest and never reads a partial file; a
+bad entry is reported with a :class:`~aircraft.wake.cache.CacheWarning` and
+recomputed.
+
 Each run is cached on disk (``.cache/wake/<hash>.pkl``) keyed on a SHA-256 of
 every input (configuration, settings, flight condition, trim request, input
 signal and requested points) and of the wake's own source code, so repeating a
@@ -10,15 +20,16 @@ from __future__ import annotations
 import hashlib
 import json
 import multiprocessing
-import os
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, asdict, field
+from dataclasses import dataclass, asdict
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
-__all__ = ["SweepSpec", "run_sweeps", "sweep_inputs"]
+from .._validation import real as _real
+from .cache import WakeCache, WakeCacheError, _finite_tree, check_finite_frame, resolve_cache_dir
+
+__all__ = ["SweepSpec", "SweepSpecError", "run_sweeps", "sweep_inputs"]
 
 _CACHE_VERSION = "wake-3"   # bump when the marching code changes results
 
@@ -78,13 +89,37 @@ class SweepSpec:
 
     def __post_init__(self):
         if self.kind not in ("sweep", "doublet", "sine"):
-            raise ValueError(f"SweepSpec.kind must be 'sweep', 'doublet' or 'sine', got {self.kind!r}")
-        if not self.duration > 0:
-            raise ValueError("SweepSpec.duration must be positive [s]")
+            raise SweepSpecError(f"SweepSpec.kind must be 'sweep', 'doublet' or 'sine', got {self.kind!r}")
+        self._validate()
+
+    def _validate(self):
+        e = SweepSpecError
+        if not isinstance(self.control, str) or not self.control:
+            raise e(f"SweepSpec.control must be a control name such as 'theta0_U', got {self.control!r}")
+        _real(e, "SweepSpec.duration", self.duration, positive=True, unit="s")
+        _real(e, "SweepSpec.amplitude", self.amplitude, unit="rad")
+        # a swashplate input of more than 0.5 rad (29 deg) is no small perturbation
+        if abs(self.amplitude) > 0.5:
+            raise e(f"SweepSpec.amplitude must be within +-0.5 rad, got {self.amplitude!r}")
+        for name, unit in (("w_min", "rad/s"), ("w_max", "rad/s"), ("pulse_width", "s")):
+            _real(e, f"SweepSpec.{name}", getattr(self, name), positive=True, unit=unit)
+        for name in ("trim_start", "trim_end"):
+            _real(e, f"SweepSpec.{name}", getattr(self, name), nonnegative=True, unit="s")
+        _real(e, "SweepSpec.noise_fraction", self.noise_fraction, nonnegative=True)
+        if self.kind == "sweep" and not self.w_max > self.w_min:
+            raise e(f"SweepSpec.w_max ({self.w_max}) must exceed w_min ({self.w_min}) [rad/s]")
+        if self.seed is not None and (isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer))):
+            raise e(f"SweepSpec.seed must be an integer or None, got {self.seed!r}")
+        if not isinstance(self.label, str):
+            raise e(f"SweepSpec.label must be a string, got {self.label!r}")
 
     @property
     def name(self):
         return self.label or f"{self.kind}_{self.control}"
+
+
+class SweepSpecError(ValueError):
+    """A :class:`SweepSpec` field is NaN, infinite, complex, of the wrong type or out of range."""
 
 
 def sweep_inputs(spec: SweepSpec, dt: float):
@@ -112,26 +147,77 @@ def _init_pool_worker():
     numba.set_num_threads(1)
 
 
-def _worker(args):
-    config, settings, flight, snap, trim_result, spec, points, path = args
+def _trim(config, settings, flight, trim):
+    """Trim a fresh wake; ``(snapshot, WakeTrim)``."""
+    from .wake import FreeVortexWake
+    wake = FreeVortexWake(config, settings, flight)
+    trim_result = wake.trim(**trim)
+    return wake._trim_state, trim_result
+
+
+def _run_spec(config, settings, flight, snap, trim_result, spec, points):
+    """One record from the trimmed wake state ``snap`` (a pandas.DataFrame)."""
     from .wake import FreeVortexWake
     wake = FreeVortexWake(config, settings, flight)
     wake.restore(snap)
     wake._trim_state = snap
     wake.trim_result = trim_result
     t, u = sweep_inputs(spec, wake.dt)
-    df = wake.run({spec.control: (np.asarray(t), np.asarray(u))}, duration=float(t[-1]),
-                  points=points)
+    return wake.run({spec.control: (np.asarray(t), np.asarray(u))}, duration=float(t[-1]),
+                    points=points)
+
+
+def _check_run(spec):
+    """Content check of a stored/served run: finite numbers, and the record of ``spec``."""
+    want = asdict(spec)
+
+    def check(df):
+        check_finite_frame(df, f"run {spec.name!r}")
+        if df.attrs.get("spec") != want:
+            raise WakeCacheError(f"run {spec.name!r}: the entry records spec {df.attrs.get('spec')!r}")
+        if "t" not in df.columns:
+            raise WakeCacheError(f"run {spec.name!r}: no time column 't'")
+    return check
+
+
+def _check_trim(value):
+    """A stored/served trim must be a converged WakeTrim with a finite state."""
+    from .trim import WakeTrim
+    if not (isinstance(value, tuple) and len(value) == 2 and isinstance(value[1], WakeTrim)):
+        raise WakeCacheError("trim entry: expected (snapshot, WakeTrim)")
+    snap, tr = value
+    if not tr.converged:
+        raise WakeCacheError(f"trim entry: the trim did not converge (residual {tr.residual:.3g})")
+    bad = _finite_tree(snap, "snapshot") + _finite_tree(tr.controls, "controls") \
+        + _finite_tree(tr.outputs, "outputs") + _finite_tree(float(tr.residual), "residual")
+    if bad:
+        raise WakeCacheError(f"trim entry: NaN or infinite values in {bad[:5]}")
+
+
+def _worker(args):
+    config, settings, flight, snap, trim_result, spec, points, cache_dir, key = args
+    df = _run_spec(config, settings, flight, snap, trim_result, spec, points)
     df.attrs["spec"] = asdict(spec)
-    if path is not None:
-        tmp = f"{path}.{os.getpid()}.tmp"
-        df.to_pickle(tmp)
-        os.replace(tmp, path)
+    check = _check_run(spec)
+    try:
+        check(df)
+    except WakeCacheError as e:
+        raise WakeCacheError(f"the wake run produced an unusable record, not stored: {e}") from None
+    if cache_dir is not None:
+        # written here, as soon as the run ends: a kill later loses nothing finished
+        WakeCache(cache_dir, _CACHE_VERSION).store(key, df, kind="run")
     return spec.name, df
 
 
+def _control_names(config):
+    """Swashplate controls, then the prescribed tip-path-plane inputs (rigid-flap wakes)."""
+    from ..inflow.base import rotor_suffix
+    return [f"{k}{rotor_suffix(r.name)}" for r in config.rotors for k in ("theta0", "theta1s", "theta1c")] \
+        + [f"{k}{rotor_suffix(r.name)}" for r in config.rotors for k in ("beta1s", "beta1c")]
+
+
 def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_jobs=2,
-               cache_dir=".cache/wake", progress=True):
+               cache_dir="default", progress=True):
     """Trim once, then run every input record from the trimmed wake in parallel.
 
     Parameters
@@ -142,12 +228,15 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     specs : sequence of SweepSpec
     trim : dict, optional
         Keyword arguments of :func:`aircraft.wake.trim_wake` (e.g. ``ct``, ``mode``).
+        The trim must converge: the sweeps never start from an unconverged trim.
     points : dict, optional
         Off-rotor points ``{label: (x, y, z)}`` in body axes [m].
     n_jobs : int
         Worker processes (1: run in this process).
     cache_dir : str or Path or None
-        Disk cache folder; None disables the cache.
+        Disk cache folder; None disables the cache.  The default, ``"default"``,
+        is the environment variable ``ROTORWAKE_CACHE_DIR`` if set (an empty
+        value, ``0`` or ``off`` disables the cache), else ``.cache/wake``.
     progress : bool
         Show a tqdm progress bar over the runs.
 
@@ -156,46 +245,87 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     dict
         ``{spec.name: pandas.DataFrame}`` (see :func:`aircraft.wake.run_wake`) plus
         ``"trim"``: the :class:`~aircraft.wake.WakeTrim`.
+
+    Raises
+    ------
+    WakeTrimError
+        The trim did not converge (its residual is in the message); nothing is run.
+    SweepSpecError, ValueError
+        Bad specs (unknown control, duplicate names), points or arguments.
+
+    Warns
+    -----
+    CacheWarning
+        A cache entry was corrupt, truncated, stale or held the wrong contents; it
+        is recomputed.
     """
     from tqdm.auto import tqdm
-    from .wake import FreeVortexWake
+    from ..configs import AircraftConfig
+    from .settings import FlightCondition, WakeSettings
+    from .trim import WakeTrimError
 
+    for name, value, cls in (("config", config, AircraftConfig), ("settings", settings, WakeSettings),
+                             ("flight", flight, FlightCondition)):
+        if not isinstance(value, cls):
+            raise TypeError(f"{name} must be an aircraft {cls.__name__}, got {type(value).__name__}")
+    if isinstance(specs, SweepSpec):
+        specs = [specs]
     specs = list(specs)
     if not specs:
-        raise ValueError("run_sweeps needs at least one SweepSpec")
+        raise SweepSpecError("run_sweeps needs at least one SweepSpec")
+    controls = _control_names(config)
+    for k, s in enumerate(specs):
+        if not isinstance(s, SweepSpec):
+            raise SweepSpecError(f"specs[{k}] must be a SweepSpec, got {type(s).__name__}")
+        if s.control not in controls:
+            raise SweepSpecError(f"SweepSpec {s.name!r}: unknown control {s.control!r}; "
+                                 f"this configuration has {controls}")
     names = [s.name for s in specs]
     if len(set(names)) != len(names):
-        raise ValueError(f"SweepSpec names must be unique, got {names}")
+        raise SweepSpecError(f"SweepSpec names must be unique, got {names}")
+    if isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs < 1:
+        raise ValueError(f"n_jobs must be an integer >= 1, got {n_jobs!r}")
+    if trim is not None and not isinstance(trim, dict):
+        raise TypeError(f"trim must be a dict of trim_wake keyword arguments, got {type(trim).__name__}")
+    for label, p in dict(points or {}).items():
+        if not isinstance(label, str) or not label:
+            raise ValueError(f"point labels must be non-empty strings, got {label!r}")
+        arr = np.asarray(p)
+        if arr.shape != (3,) or not np.isrealobj(arr) or not np.all(np.isfinite(arr.astype(float))):
+            raise ValueError(f"point {label!r} must be three finite real coordinates (x, y, z) [m], "
+                             f"got {p!r}")
     trim = dict(trim or {})
     points = dict(points or {})
     base = {"v": _CACHE_VERSION, "code": _wake_code_digest(), "config": repr(config), "settings": asdict(settings),
             "flight": asdict(flight), "trim": trim,
             "points": {k: list(map(float, v)) for k, v in points.items()}}
     keys = {s.name: _key({**base, "spec": asdict(s)}) for s in specs}
-    cache = Path(cache_dir) if cache_dir is not None else None
+    folder = resolve_cache_dir(cache_dir)
+    cache = WakeCache(folder, _CACHE_VERSION) if folder is not None else None
     results, todo = {}, []
-    if cache is not None:
-        cache.mkdir(parents=True, exist_ok=True)
-        for s in specs:
-            p = cache / f"{keys[s.name]}.pkl"
-            if p.exists():
-                results[s.name] = pd.read_pickle(p)
-            else:
-                todo.append(s)
+    for s in specs:
+        df = cache.load(keys[s.name], kind="run", check=_check_run(s)) if cache is not None else None
+        if df is None:
+            todo.append(s)
+        else:
+            results[s.name] = df
+    trim_key = f"trim-{_key(base)}"
+    cached_trim = cache.load(trim_key, kind="trim", check=_check_trim) if cache is not None else None
+    if cached_trim is None:
+        snap, trim_result = _trim(config, settings, flight, trim)
+        if not trim_result.converged:
+            raise WakeTrimError(
+                f"run_sweeps: the wake trim did not converge in {trim_result.iterations} iterations "
+                f"(largest load residual {trim_result.residual:.3g}); refusing to run sweeps from "
+                "it. Loosen tol, raise max_iter, or check the thrust target.", trim_result)
+        if cache is not None:
+            cache.store(trim_key, (snap, trim_result), kind="trim", check=_check_trim)
     else:
-        todo = specs
-    trim_path = cache / f"trim-{_key(base)}.pkl" if cache is not None else None
-    if todo or trim_path is None or not trim_path.exists():
-        wake = FreeVortexWake(config, settings, flight)
-        trim_result = wake.trim(**trim)
-        snap = wake._trim_state
-        if trim_path is not None:
-            pd.to_pickle((snap, trim_result), trim_path)
-    else:
-        snap, trim_result = pd.read_pickle(trim_path)
+        snap, trim_result = cached_trim
     jobs = [(config, settings, flight, snap, trim_result, s, points,
-             str(cache / f"{keys[s.name]}.pkl") if cache is not None else None) for s in todo]
-    bar = tqdm(total=len(jobs), desc="wake sweeps", disable=not progress)
+             str(folder) if cache is not None else None, keys[s.name]) for s in todo]
+    bar = tqdm(total=len(specs), initial=len(specs) - len(todo), desc="wake sweeps",
+               disable=not progress)
     if n_jobs <= 1 or len(jobs) <= 1:
         for job in jobs:
             name, df = _worker(job)

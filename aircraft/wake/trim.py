@@ -2,19 +2,36 @@
 from __future__ import annotations
 
 import math
+import numbers
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
+from .._validation import integer as _integer, real as _real
 from ..inflow.base import rotor_suffix
 from .threads import single_threaded_blas
+from .wake import WakeDivergedError
 
-__all__ = ["WakeTrim", "WakeTrimError", "trim_wake", "run_wake"]
+__all__ = ["WakeTrim", "WakeTrimError", "WakeInputError", "trim_wake", "run_wake"]
 
 
 class WakeTrimError(RuntimeError):
-    """Raised when the wake trim does not converge."""
+    """The wake trim did not converge, diverged, or ran out of its iteration/time budget.
+
+    ``result`` is the :class:`WakeTrim` reached (None when the trim could not
+    start); ``residuals`` maps each trim equation to its last residual [-].
+    """
+
+    def __init__(self, message, result=None, residuals=None):
+        super().__init__(message)
+        self.result = result
+        self.residuals = dict(residuals or {})
+
+
+class WakeInputError(ValueError):
+    """A trim_wake/run_wake argument is NaN, infinite, complex, of the wrong type or out of range."""
 
 
 @dataclass
@@ -58,16 +75,57 @@ def _targets(wake, ct, mode):
         ct = cfg.trim_ct if len(cfg.trim_ct) == len(names) else None
         if ct is None:
             raise WakeTrimError("no thrust target: pass ct= or set AircraftConfig.trim_ct")
-    ct = np.atleast_1d(np.asarray(ct, dtype=float))
+    ct = np.atleast_1d(np.asarray(ct))
+    if ct.ndim != 1 or np.iscomplexobj(ct) or not np.issubdtype(ct.dtype, np.number):
+        raise WakeInputError(f"ct must be real thrust coefficient(s), got {ct!r}")
+    ct = ct.astype(float)
+    if not np.all(np.isfinite(ct)):
+        raise WakeInputError(f"ct must be finite, got {ct}")
     if mode not in ("thrust", "torque_balance"):
-        raise ValueError(f"mode must be 'thrust' or 'torque_balance', got {mode!r}")
+        raise WakeInputError(f"mode must be 'thrust' or 'torque_balance', got {mode!r}")
     if mode == "torque_balance" and len(names) != 2:
-        raise ValueError("mode='torque_balance' needs a coaxial (two-rotor) configuration")
+        raise WakeInputError("mode='torque_balance' needs a coaxial (two-rotor) configuration")
     if mode == "thrust" and ct.size != len(names):
-        raise ValueError(f"ct needs one value per rotor ({len(names)}), got {ct.size}")
+        raise WakeInputError(f"ct needs one value per rotor ({len(names)}), got {ct.size}")
+    if mode == "torque_balance" and ct.size not in (1, 2):
+        raise WakeInputError(f"ct for mode='torque_balance' needs one or two values, got {ct.size}")
     if np.any(ct <= 0):
-        raise ValueError("thrust coefficient targets must be positive")
+        raise WakeInputError(f"thrust coefficient targets ct must be positive, got {ct}")
+    _check_blade_loading(wake, ct, mode)
     return ct
+
+
+#: largest blade loading C_T/sigma a trim is attempted at: the section lift is
+#: clipped at the stall angle (12 deg, c_l = a alpha_s ~ 1.2), and a uniformly
+#: loaded blade cannot exceed C_T/sigma = c_l,max / 6 ~ 0.2; 0.25 leaves margin
+_MAX_BLADE_LOADING = 0.25
+
+
+def _check_blade_loading(wake, ct, mode):
+    """Refuse at once a thrust target no blade-element rotor can reach (C_T/sigma)."""
+    per_rotor = ct if mode == "thrust" else np.full(len(wake.rotors), ct.sum() / len(wake.rotors))
+    for c, rot in zip(per_rotor, wake.rotors):
+        sigma = rot.nb * rot.chord / (math.pi * rot.R)
+        cl_max = rot.a * rot.stall
+        limit = min(_MAX_BLADE_LOADING, cl_max / 6.0 * 1.25)
+        if c / sigma > limit:
+            raise WakeTrimError(
+                f"thrust target C_T = {c:.4g} on rotor {rot.name!r} is a blade loading "
+                f"C_T/sigma = {c / sigma:.3g}, above the {limit:.3g} a blade stalling at "
+                f"{math.degrees(rot.stall):.3g} deg can carry: the trim cannot converge",
+                residuals={f"CT{rotor_suffix(rot.name)}": float(c)})
+
+
+def _residual_names(wake, mode, cyclic):
+    names = [r.name for r in wake.rotors]
+    if mode == "thrust":
+        out = [f"CT{rotor_suffix(n)}" for n in names]
+    else:
+        out = ["CT_total", "CQ_difference"]
+    if cyclic:
+        for n in names:
+            out += [f"CL{rotor_suffix(n)}", f"CM{rotor_suffix(n)}"]
+    return out
 
 
 def _residual(wake, out, ct, mode, cyclic):
@@ -146,7 +204,8 @@ def _fd_jacobian(wake, names, ct, mode, cyclic, res0, start, n_steps, h):
 
 def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_per_iter=2,
               tol=2e-5, max_iter=20, damping=0.8, update_jacobian=False, jacobian="auto",
-              fd_step=math.radians(0.5), fd_refresh=math.radians(3.0)):
+              fd_step=math.radians(0.5), fd_refresh=math.radians(3.0), max_time=None,
+              raise_on_failure=True):
     """Time-march the wake to a periodic state and adjust the controls to the targets.
 
     Parameters
@@ -204,11 +263,41 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         linear in the cyclic between zero and the ~9 deg of a mu = 0.54 trim
         (dC_Q/dtheta1s changed 25x, measured), and a Jacobian kept from the start
         drove the coaxial torque balance away.
+    max_time : float, optional
+        Wall-clock budget [s]; the trim stops (and fails) after the iteration
+        that exceeds it.  None: only ``max_iter`` bounds it.
+    raise_on_failure : bool
+        Raise :class:`WakeTrimError` when the trim does not converge (default).
+        False returns the unconverged :class:`WakeTrim` (``converged=False``)
+        for inspection; :func:`~aircraft.wake.run_sweeps` refuses it either way.
 
     Returns
     -------
     WakeTrim
+
+    Raises
+    ------
+    WakeTrimError
+        Not converged within ``max_iter`` iterations or ``max_time``, the residual
+        became non-finite or the wake diverged, or the thrust target exceeds what
+        the blades can carry (refused before marching).  ``.result`` holds the
+        last :class:`WakeTrim`, ``.residuals`` the residual of each equation.
+    WakeInputError
+        An argument is NaN, infinite, complex or out of range.
     """
+    e = WakeInputError
+    settle_revs = _integer(e, "settle_revs", settle_revs, minimum=0)
+    revs_per_iter = _integer(e, "revs_per_iter", revs_per_iter, minimum=1)
+    max_iter = _integer(e, "max_iter", max_iter, minimum=1)
+    tol = _real(e, "tol", tol, positive=True)
+    damping = _real(e, "damping", damping, positive=True, hi=1.0)
+    fd_step = _real(e, "fd_step", fd_step, positive=True, hi=math.radians(10.0), unit="rad")
+    fd_refresh = _real(e, "fd_refresh", fd_refresh, positive=True, unit="rad")
+    if max_time is not None:
+        max_time = _real(e, "max_time", max_time, positive=True, unit="s")
+    if cyclic is not None and not isinstance(cyclic, bool):
+        raise e(f"cyclic must be True, False or None, got {cyclic!r}")
+    t_start = time.perf_counter()
     ct = _targets(wake, ct, mode)
     if cyclic is None:
         cyclic = wake.flight.speed > 1.0
@@ -216,7 +305,7 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
     if jacobian == "auto":
         jacobian = "fd" if wake.flight.speed > 1.0 else "estimate"
     if jacobian not in ("estimate", "fd"):
-        raise ValueError(f"jacobian must be 'auto', 'estimate' or 'fd', got {jacobian!r}")
+        raise WakeInputError(f"jacobian must be 'auto', 'estimate' or 'fd', got {jacobian!r}")
     J = _jacobian_estimate(wake, ct, mode, cyclic) if jacobian == "estimate" else None
     nrev = wake.settings.steps_per_rev
     if all(abs(wake.controls[n]) < 1e-12 for n in names):
@@ -238,21 +327,49 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
                     lam = 0.5 * lam + 0.5 * (1.15 * c / (2.0 * math.hypot(mu, lam)) - mu_z)
                 theta = 3.0 * (2.0 * c / (sigma * rot.a) + lam / 2.0) / (1.0 + 1.5 * mu ** 2)
             wake.controls[f"theta0{rotor_suffix(rot.name)}"] = theta
-    wake.march(settle_revs * nrev)
+    res_names = _residual_names(wake, mode, cyclic)
     history = []
     x = np.array([wake.controls[n] for n in names])
     res_prev = x_prev = x_jac = None
     n_jacobians = 0
     converged = False
     out = None
+    failure = None
+    res = np.full(len(res_names), np.nan)
+    try:
+        if settle_revs:
+            wake.march(settle_revs * nrev)
+    except WakeDivergedError as err:
+        failure = f"the wake diverged while settling ({err})"
     for it in range(1, max_iter + 1):
+        if failure:
+            break
         start = wake.snapshot() if jacobian == "fd" else None
-        out = wake.march(revs_per_iter * nrev)
+        try:
+            out = wake.march(revs_per_iter * nrev)
+        except WakeDivergedError as err:
+            failure = f"the wake diverged at iteration {it} ({err})"
+            break
         res = _residual(wake, out, ct, mode, cyclic)
         history.append({**{n: wake.controls[n] for n in names}, **out,
                         "iteration": it, "residual": float(np.abs(res).max())})
+        if not np.all(np.isfinite(res)):
+            failure = f"the residual became non-finite at iteration {it}"
+            break
         if np.abs(res).max() < tol:
             converged = True
+            break
+        if max_time is not None and time.perf_counter() - t_start > max_time:
+            failure = f"the time budget max_time = {max_time:g} s ran out after {it} iterations"
+            break
+        # a trim running away (residual 30x its best for two iterations in a row)
+        # will not come back within max_iter: stop instead of marching on
+        worst_recent = min(h["residual"] for h in history[-2:])
+        if it >= 4 and worst_recent > 30.0 * min(h["residual"] for h in history):
+            failure = (f"the trim is diverging (residual {history[-1]['residual']:.3g} at "
+                       f"iteration {it}, best {min(h['residual'] for h in history):.3g})")
+            break
+        if it == max_iter:
             break
         if jacobian == "fd" and (J is None or np.abs(x - x_jac).max() > fd_refresh
                                  or np.abs(res).max() > 2.0 * np.abs(res_prev).max()):
@@ -265,7 +382,11 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
             dx, dr = x - x_prev, res - res_prev
             if np.dot(dx, dx) > 0:
                 J = J + np.outer(dr - J @ dx, dx) / np.dot(dx, dx)
-        step = -np.linalg.solve(J, res)
+        try:
+            step = -np.linalg.solve(J, res)
+        except np.linalg.LinAlgError:
+            failure = f"the trim Jacobian became singular at iteration {it}"
+            break
         if jacobian == "fd":
             big = np.abs(step).max()
             if big > math.radians(2.0):
@@ -276,9 +397,24 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         x = x + damping * step
         for n, v in zip(names, x):
             wake.controls[n] = float(v)
-    result = WakeTrim(controls=dict(wake.controls), outputs=out, converged=converged,
-                      iterations=len(history), residual=history[-1]["residual"], history=history,
-                      fd_jacobians=n_jacobians)
+    result = WakeTrim(controls=dict(wake.controls), outputs=out or {}, converged=converged,
+                      iterations=len(history),
+                      residual=history[-1]["residual"] if history else float("nan"),
+                      history=history, fd_jacobians=n_jacobians)
+    residuals = {n: float(r) for n, r in zip(res_names, res)}
+    if failure is None and not converged:
+        failure = f"not converged in max_iter = {max_iter} iterations"
+    if failure is not None:
+        wake.trim_result = result
+        if raise_on_failure or not history or not np.all(np.isfinite(res)):
+            worst = ", ".join(f"{k} = {v:.3g}" for k, v in residuals.items())
+            raise WakeTrimError(f"wake trim failed: {failure} (tol {tol:g}); residuals: {worst}. "
+                                f"Controls reached: { {k: round(float(v), 5) for k, v in result.controls.items()} } rad",
+                                result, residuals)
+        # unconverged but finite: returned on request (converged=False) for
+        # inspection; run_sweeps refuses to start from it
+        wake._trim_state = wake.snapshot()
+        return result
     wake._trim_state = wake.snapshot()
     wake.trim_result = result
     return result
@@ -287,14 +423,30 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
 def _control_function(spec, name):
     """A callable of time [s] from a float, a callable, or a (t, u) pair of arrays."""
     if callable(spec):
-        return spec
+        def checked(t, _f=spec):
+            v = _f(t)
+            if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real) \
+                    and not (isinstance(v, np.ndarray) and v.ndim == 0 and np.isrealobj(v)):
+                raise WakeInputError(f"control {name!r}: the callable returned {v!r} at t = {t:.4g} s; "
+                                     "it must return a real number [rad]")
+            if not math.isfinite(float(v)):
+                raise WakeInputError(f"control {name!r}: the callable returned {v!r} at t = {t:.4g} s; "
+                                     "it must return a finite angle [rad]")
+            return float(v)
+        return checked
     if isinstance(spec, tuple) and len(spec) == 2:
-        tt, uu = (np.asarray(spec[0], dtype=float), np.asarray(spec[1], dtype=float))
-        if tt.shape != uu.shape or tt.ndim != 1 or np.any(np.diff(tt) <= 0):
-            raise ValueError(f"control {name!r}: (t, u) must be 1-D arrays of equal length "
-                             "with increasing t [s]")
+        tt, uu = np.asarray(spec[0]), np.asarray(spec[1])
+        for label, arr in (("t", tt), ("u", uu)):
+            if np.iscomplexobj(arr) or not np.issubdtype(arr.dtype, np.number):
+                raise WakeInputError(f"control {name!r}: {label} must be a real array, got dtype {arr.dtype}")
+        tt, uu = tt.astype(float), uu.astype(float)
+        if tt.shape != uu.shape or tt.ndim != 1 or tt.size < 2 or np.any(np.diff(tt) <= 0):
+            raise WakeInputError(f"control {name!r}: (t, u) must be 1-D arrays of equal length "
+                                 "(>= 2) with increasing t [s]")
+        if not (np.all(np.isfinite(tt)) and np.all(np.isfinite(uu))):
+            raise WakeInputError(f"control {name!r}: (t, u) contain NaN or infinite values")
         return lambda t: float(np.interp(t, tt, uu, left=uu[0], right=uu[-1]))
-    v = float(spec)
+    v = _real(WakeInputError, f"control {name!r}", spec, unit="rad")
     return lambda t: v
 
 
@@ -325,17 +477,27 @@ def run_wake(wake, controls=None, duration=1.0, *, points=None, about_trim=True,
         ``beta1s_dot/beta1c_dot`` [rad/s] per rotor, requested velocities.
     """
     controls = {} if controls is None else dict(controls)
-    unknown = set(controls) - set(wake.control_names)
+    flap_names = list(getattr(wake, "flap_input_names", []))
+    unknown = set(controls) - set(wake.control_names) - set(flap_names)
     if unknown:
-        raise ValueError(f"unknown control names {sorted(unknown)}; have {wake.control_names}")
-    if not duration > 0:
-        raise ValueError(f"duration must be positive [s], got {duration!r}")
+        raise WakeInputError(f"unknown control names {sorted(unknown)}; have "
+                             f"{wake.control_names + flap_names}")
+    duration = _real(WakeInputError, "duration", duration, positive=True, unit="s")
+    if duration / wake.dt > 10_000_000:
+        raise WakeInputError(f"duration = {duration:g} s is {duration / wake.dt:.3g} wake steps; "
+                             "check its unit [s]")
     if from_trim and wake._trim_state is not None:
         wake.restore(wake._trim_state)
     base = dict(wake.controls)
     funcs = {n: _control_function(v, n) for n, v in controls.items()}
     labels = list((points or {}).keys())
-    pts = np.array([points[k] for k in labels], dtype=float).reshape(-1, 3)
+    pts = np.array([points[k] for k in labels])
+    if np.iscomplexobj(pts) or (pts.size and not np.issubdtype(pts.dtype, np.number)):
+        raise WakeInputError(f"points must be real (x, y, z) coordinates [m], got {points!r}")
+    if pts.size and (pts.shape != (len(labels), 3) or not np.all(np.isfinite(pts))):
+        raise WakeInputError(f"points must map labels to three finite coordinates (x, y, z) [m], "
+                             f"got {points!r}")
+    pts = pts.astype(float).reshape(-1, 3)
     tip_speed = wake.omega * wake.rotors[0].R
     n_steps = int(math.ceil(duration / wake.dt - 1e-9))
     t0 = wake.t
