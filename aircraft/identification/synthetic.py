@@ -13,7 +13,8 @@ import scipy.signal as sig
 
 from flightid.sweeps import frequency_sweep
 
-__all__ = ["simulate_mltau", "mixing_matrix", "coaxial_sweep_set", "SWASHPLATE_CONTROLS"]
+__all__ = ["simulate_mltau", "mixing_matrix", "coaxial_sweep_set", "SWASHPLATE_CONTROLS",
+           "printed_6state_structure", "printed_6state_values"]
 
 #: The six coaxial swashplate controls, in load order.
 SWASHPLATE_CONTROLS = ["theta0_U", "theta1s_U", "theta1c_U", "theta0_L", "theta1s_L", "theta1c_L"]
@@ -100,3 +101,16 @@ def coaxial_sweep_set(model, *, seed=0, dt=0.01, duration=100.0, noise=0.02, w_m
         runs.append({"t": t, "theta": s, "control": j, "loads": loads_n, "lam": lam_n,
                      "loads_clean": loads, "lam_clean": lam})
     return runs
+
+
+def printed_6state_structure(initial, omega):
+    """The §5.3 structure in the printed (common) frame, for truths simulated from Eq. 5.3 as
+    printed (:class:`aircraft.identification.Coaxial6State` with ``frame="printed"``)."""
+    from .structures import Coaxial6State
+    return Coaxial6State("printed").build(initial, omega)
+
+
+def printed_6state_values(model):
+    """A printed 6-state model's values on the 24 parameters of §5.3 (printed frame)."""
+    from .structures import Coaxial6State
+    return Coaxial6State("printed").published_values(model)
