@@ -71,10 +71,14 @@ def tables(model):
     return cost, params
 
 
-def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", verbose=True, **kwargs):
-    """Identify, verify, write tables and figures; return the IdentifiedModel."""
+def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", verbose=True, model=None,
+              **kwargs):
+    """Identify (unless ``model``, an IdentifiedModel, is given), write tables and figures;
+    return the IdentifiedModel."""
     t0 = time.perf_counter()
-    _, trim, model, _ = identify(settings, **kwargs)
+    if model is None:
+        model = identify(settings, **kwargs)[2]
+    trim = model.trim
     cost, params = tables(model)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -93,6 +97,9 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
         fmt = lambda v: f"{v:.4g}"   # noqa: E731
         o = trim.outputs
         print("== Coaxial wake identification: 6-state hover model (structure of §5.3, our frames) ==")
+        ws = model.settings.wake_settings
+        print(f"wake: {math.degrees(ws.azimuth_step):g} deg steps, {ws.wake_revolutions:g}"
+              f"+{ws.buffer_revolutions:g} revs, {ws.n_elements} elements")
         print(f"wake trim: C_T U/L {o['CT_U']:.5f}/{o['CT_L']:.5f}, C_Q U/L {o['CQ_U']:.3g}/{o['CQ_L']:.3g}, "
               f"lam0 U/L {o['lam0_U']:.4f}/{o['lam0_L']:.4f}")
         print(cost.to_string(index=False, float_format=fmt))

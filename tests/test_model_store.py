@@ -97,3 +97,19 @@ def test_shipped_single_rotor_gain_against_momentum_theory():
     assert abs(gain * 4 * lam_h - 1) < 0.30
     dc = control.dcgain(rec.to_inflow().system)
     assert dc[0, 0] == pytest.approx(gain, rel=1e-6)
+
+
+def test_shipped_coaxial_lateral_cross_couplings_have_the_signs_of_converted_eq53():
+    # our wake and the frame-converted printed model must agree on the signs of the
+    # quasi-steady upper-on-lower cyclic couplings (the printed model, read in our
+    # frames without conversion, has lam1s_L/CL_U of the wrong sign). The weaker
+    # lower-on-upper coupling lam1s_U/CL_L is not checked: the coarse shipped model
+    # gives +4.6 where converted Eq. 5.3 gives -3.4 (an open finding, see README).
+    rec = load_record("coaxial_hover_6state")
+    ours = np.linalg.inv(rec.matrices["L"])
+    conv = np.linalg.inv(in_rotor_frames(COAXIAL_HOVER_6STATE).L)
+    printed = np.linalg.inv(COAXIAL_HOVER_6STATE.L)
+    for i, j in ((4, 1), (5, 2)):      # lam1s_L/CL_U, lam1c_L/CM_U
+        assert np.sign(ours[i, j]) == np.sign(conv[i, j]), (i, j)
+    assert np.sign(ours[4, 1]) != np.sign(printed[4, 1])
+    assert rec.settings["settings"]["wake"]["n_elements"] == 6      # the coarse recipe (see regenerate.py)
