@@ -104,7 +104,7 @@ def test_shipped_coaxial_lateral_cross_couplings_have_the_signs_of_converted_eq5
     # quasi-steady upper-on-lower cyclic couplings (the printed model, read in our
     # frames without conversion, has lam1s_L/CL_U of the wrong sign). The weaker
     # lower-on-upper coupling lam1s_U/CL_L is not checked: the coarse shipped model
-    # gives +4.6 where converted Eq. 5.3 gives -3.4 (an open finding, see README).
+    # gives +1.4 where converted Eq. 5.3 gives -3.4 (an open finding, see README).
     rec = load_record("coaxial_hover_6state")
     ours = np.linalg.inv(rec.matrices["L"])
     conv = np.linalg.inv(in_rotor_frames(COAXIAL_HOVER_6STATE).L)

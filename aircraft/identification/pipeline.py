@@ -31,7 +31,7 @@ __all__ = ["IdentificationSettings", "IdentifiedModel", "PipelineError", "identi
 
 #: Version of the pipeline's numerical recipe; part of every settings hash. Bump it
 #: when a change would alter an identified model (start, fit, reduction, signals).
-PIPELINE_VERSION = "pipeline-1"
+PIPELINE_VERSION = "pipeline-2"   # 2: apparent-mass diagonals protected in the reduction
 
 
 class PipelineError(RuntimeError):
@@ -400,7 +400,8 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min)
     if s.reduce:
         reduction = reduce(flight_structure, responses, insensitivity_max=s.insensitivity_max,
-                           cramer_rao_max=s.cramer_rao_max, progress=progress, **fit_kwargs)
+                           cramer_rao_max=s.cramer_rao_max, protected=structure.protected,
+                           progress=progress, **fit_kwargs)
         result = reduction.result
     else:
         reduction, result = None, fit(flight_structure, responses, **fit_kwargs)

@@ -99,9 +99,15 @@ class InflowStructure:
     def outputs(self):
         return inflow_names(self.rotors)
 
+    #: Parameters the automatic reduction never removes: the diagonal apparent
+    #: masses (or near-wake poles). Without one a state has no dynamics of its own;
+    #: on the coarse coaxial wake removing m22 left the cyclic M with det 5e-5 and
+    #: a 7600 1/s pole.
+    protected = ()
+
     def spec(self):
         """What identifies this structure in a settings hash (dict of str)."""
-        return {"key": self.key, "frame": self.frame, "form": self.form}
+        return {"key": self.key, "frame": self.frame, "form": self.form, "protected": list(self.protected)}
 
     def __repr__(self):
         return f"{type(self).__name__}(frame={self.frame!r})"
@@ -145,6 +151,7 @@ class SingleRotor3State(InflowStructure):
 
     key = "single_rotor_3state"
     rotors = ("",)
+    protected = ("m11", "m22")
 
     def build(self, initial, omega, fixed=()):
         from flightid import MLTauStructure
@@ -182,6 +189,7 @@ class Coaxial6State(InflowStructure):
 
     key = "coaxial_6state"
     rotors = ("U", "L")
+    protected = ("m11", "m22", "m44", "m55")
 
     def build(self, initial, omega, fixed=()):
         from flightid import MLTauStructure
@@ -286,6 +294,7 @@ class Coaxial12State(InflowStructure):
     rotors = ("U", "L")
     form = "fgc"
     uses_flap_rates = True
+    protected = tuple(f"f{k}_{k}" for k in range(1, 13))
 
     def __init__(self, frame="rotor", tied=True):
         super().__init__(frame)
