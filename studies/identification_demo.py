@@ -19,43 +19,23 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from aircraft.identification import Coaxial6State
+from aircraft.identification.synthetic import SWASHPLATE_CONTROLS as CONTROLS
+from aircraft.identification.synthetic import coaxial_sweep_set, simulate_mltau
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
-from flightid import (MLTauStructure, combine_responses, doublet, fit, frequency_response,
-                      joint_input_output, reduce, verify)
-from studies.synthetic_coaxial import coaxial_sweep_set, simulate_mltau
-
-CONTROLS = ["theta0_U", "theta1s_U", "theta1c_U", "theta0_L", "theta1s_L", "theta1c_L"]
-# the 24 free parameters of §5.3 (ties: rows 2/3 and 5/6 share values)
-FREE_ELEMENTS = [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)]
+from flightid import combine_responses, doublet, frequency_response, joint_input_output, reduce, verify
 
 
 def coaxial_6state_structure(initial, omega, cyclic_cross_sign=""):
-    """The §5.3 structure: Pitt-Peters-like diagonal blocks, roll/pitch symmetry ties.
-
-    ``cyclic_cross_sign="-"`` sign-ties the cross-rotor cyclic M and Lbar terms of
-    the cosine rows to those of the sine rows (a lower rotor in its own, mirrored
-    frame; see :mod:`studies.coaxial_wake_identification`); delays keep plain ties.
-    """
-    def pattern(p, sign):
-        return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
-                [0, f"{p}22", 0, 0, f"{p}25", 0],
-                [0, 0, f"{p}22", 0, 0, f"{sign}{p}25"],
-                [f"{p}41", 0, 0, f"{p}44", 0, 0],
-                [0, f"{p}52", 0, 0, f"{p}55", 0],
-                [0, 0, f"{sign}{p}52", 0, 0, f"{p}55"]]
-    return MLTauStructure(pattern("m", cyclic_cross_sign), pattern("l", cyclic_cross_sign),
-                          pattern("t", ""),
-                          inputs=COAXIAL_HOVER_6STATE.input_names,
-                          outputs=COAXIAL_HOVER_6STATE.output_names,
-                          initial=initial, omega=omega)
+    """The §5.3 structure (library: :class:`aircraft.identification.Coaxial6State`);
+    ``cyclic_cross_sign="-"`` gives our rotor frames, ``""`` the printed frame."""
+    frame = "rotor" if cyclic_cross_sign == "-" else "printed"
+    return Coaxial6State(frame).build(initial, omega)
 
 
 def truth_values(model=COAXIAL_HOVER_6STATE):
-    vals = {}
-    for name, mat in (("m", model.M), ("l", model.L), ("t", model.tau)):
-        for i, j in FREE_ELEMENTS:
-            vals[f"{name}{i}{j}"] = float(mat[i - 1, j - 1])
-    return vals
+    """Printed model values on the 24 parameters, in its printed frame."""
+    return Coaxial6State("printed").published_values(model)
 
 
 def run_demo(seed=0, out_dir="results/identification_demo", noise=0.02, verbose=True):
@@ -73,7 +53,8 @@ def run_demo(seed=0, out_dir="results/identification_demo", noise=0.02, verbose=
     # initial guess: Pitt-Peters-like magnitudes (truth scattered by +-30 %, seeded), 50 ms delays
     rng = np.random.default_rng(seed + 100)
     initial = {k: (v * rng.uniform(0.7, 1.3) if not k.startswith("t") else 0.05) for k, v in truth.items()}
-    structure = coaxial_6state_structure(initial, model.omega)
+    # the truth is simulated in the printed frame, so it is identified in that frame
+    structure = Coaxial6State("printed").build(initial, model.omega)
     reduction = reduce(structure, lam_over_c, frequency_ranges=(1.0, 25.0))
     result = reduction.result
 

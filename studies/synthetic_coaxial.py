@@ -1,62 +1,7 @@
-"""Synthetic truth experiments for flightid, generated WITHOUT flightid's model code.
+"""Synthetic truth experiments (moved to :mod:`aircraft.identification.synthetic`).
 
-The truth M/Lbar/tau model (azimuth time, row-wise delays of Eq. 2.16) is
-simulated with scipy.signal.lsim: for each state i the full system is driven by
-the inputs delayed by row i of tau (delays applied by interpolating the input
-history at t - tau), and only component i is kept.
+Kept as a thin re-export for existing scripts; new code imports from the library.
 """
-import numpy as np
-import scipy.signal as sig
+from aircraft.identification.synthetic import coaxial_sweep_set, mixing_matrix, simulate_mltau  # noqa: F401
 
-from flightid.sweeps import frequency_sweep
-
-
-def simulate_mltau(M, L, tau, omega, t, u):
-    """lambda(t) of ``M lam' + L lam = u(t - tau)`` (d/dpsi, psi = omega t); u is (n_in, n)."""
-    M = np.asarray(M, float)
-    L = np.asarray(L, float)
-    tau = np.asarray(tau, float)
-    n = M.shape[0]
-    a = -omega * np.linalg.solve(M, L)
-    b = omega * np.linalg.inv(M)
-    system = sig.StateSpace(a, b, np.eye(n), np.zeros((n, n)))
-    out = np.zeros((n, t.size))
-    for i in range(n):
-        delayed = np.array([np.interp(t - tau[i, j], t, u[j], left=0.0) for j in range(n)])
-        _, y, _ = sig.lsim(system, delayed.T, t)
-        y = np.atleast_2d(y.T) if n > 1 else y[None, :]
-        out[i] = y[i]
-    return out
-
-
-def mixing_matrix(n, seed):
-    """A well-conditioned, fully populated 'swashplate -> loads' mixing matrix."""
-    rng = np.random.default_rng(seed)
-    return np.eye(n) + 0.4 * rng.uniform(-1, 1, size=(n, n))
-
-
-def coaxial_sweep_set(model, *, seed=0, dt=0.01, duration=100.0, noise=0.02, w_min=0.4, w_max=40.0):
-    """Six one-at-a-time control sweeps through correlated mixing and a loads lag.
-
-    Returns list of dicts with t, theta (control swept), loads (6, n), lam (6, n).
-    Loads = first-order lag (actuator-like, 0.05 s) of K_mix @ theta, so every
-    control excites all loads: the lambda/C responses cannot be measured
-    directly and need the joint input-output method.
-    """
-    k_mix = mixing_matrix(6, seed)
-    lag = sig.StateSpace(-20.0 * np.eye(6), 20.0 * k_mix, np.eye(6), np.zeros((6, 6)))
-    rng = np.random.default_rng(seed + 1)
-    runs = []
-    for j in range(6):
-        t, s = frequency_sweep(w_min, w_max, duration, dt, amplitude=1e-3, seed=seed + j)
-        theta = np.zeros((6, t.size))
-        theta[j] = s
-        _, loads, _ = sig.lsim(lag, theta.T, t)
-        loads = loads.T
-        lam = simulate_mltau(model.M, model.L, model.tau, model.omega, t, loads)
-        # measurement noise, seeded: a fraction of each signal's RMS
-        lam_n = lam + noise * rng.standard_normal(lam.shape) * lam.std(axis=1, keepdims=True)
-        loads_n = loads + noise * rng.standard_normal(loads.shape) * loads.std(axis=1, keepdims=True)
-        runs.append({"t": t, "theta": s, "control": j, "loads": loads_n, "lam": lam_n,
-                     "loads_clean": loads, "lam_clean": lam})
-    return runs
+__all__ = ["coaxial_sweep_set", "mixing_matrix", "simulate_mltau"]

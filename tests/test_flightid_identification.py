@@ -6,8 +6,9 @@ from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 from flightid import (IdentificationError, MLTauStructure, FGCStructure, GainDelayStructure,
                       SingularInputError, combine_responses, doublet, fit, frequency_response,
                       frequency_sweep, joint_input_output, reduce, verify)
-from studies.identification_demo import coaxial_6state_structure, truth_values
-from studies.synthetic_coaxial import coaxial_sweep_set, simulate_mltau
+from aircraft.identification.synthetic import (coaxial_sweep_set, simulate_mltau,
+                                               printed_6state_structure as coaxial_6state_structure,
+                                               printed_6state_values as truth_values)
 
 OMEGA = 27.0
 

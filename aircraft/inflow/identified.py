@@ -275,6 +275,56 @@ class IdentifiedInflow(InflowModel):
         return cls(sys, rotors, loads_ref, inflow_ref, name)
 
     @classmethod
+    def from_file(cls, path_or_name, pade_order=None):
+        """Load a versioned model file (:mod:`aircraft.identification.store`).
+
+        Parameters
+        ----------
+        path_or_name : str or Path
+            A ``.json`` file, or the name of a model shipped in
+            ``aircraft/data/models`` (e.g. ``"uh60_hover_3state"``,
+            ``"coaxial_hover_6state"``, ``"published_eq5_3"``; list them with
+            :func:`aircraft.identification.shipped_models`).
+        pade_order : int, optional
+            Padé order of the delays (default: the one stored in the file).
+
+        Returns
+        -------
+        IdentifiedInflow
+            About the file's trim (``loads_ref``, ``inflow_ref``), in our rotor frames.
+        """
+        from aircraft.identification.store import load_record
+        return load_record(path_or_name).to_inflow(pade_order=pade_order)
+
+    def to_file(self, path, *, omega, description="", provenance=None):
+        """Write this model (its state-space matrices and trim) as a versioned model file.
+
+        Identified models from :func:`aircraft.identification.identify_inflow` are
+        better saved with :meth:`IdentifiedModel.save`, which also stores their
+        structured matrices, cost table and bounds; this writes what an
+        :class:`IdentifiedInflow` knows (``A, B, C``, names, trim).
+
+        Parameters
+        ----------
+        path : str or Path
+        omega : float
+            Rotor speed [rad/s] the model belongs to.
+        description : str
+        provenance : dict, optional
+
+        Returns
+        -------
+        Path
+        """
+        from aircraft.identification.store import ModelRecord, settings_hash
+        mats = {"A": self.system.A, "B": self.system.B, "C": self.system.C}
+        rec = ModelRecord(name=self.name, form="statespace", rotors=self.rotors, omega=float(omega),
+                          matrices=mats, inputs=self.input_names, outputs=self.output_names,
+                          loads_ref=self.loads_ref, inflow_ref=self.inflow_ref, description=description,
+                          settings_hash=settings_hash(mats), provenance=dict(provenance or {}))
+        return rec.save(path)
+
+    @classmethod
     def from_published(cls, model, reference=None, pade_order=2, loads_ref=None):
         """A printed model of :mod:`aircraft.inflow.published` as an aircraft inflow model.
 

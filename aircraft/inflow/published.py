@@ -7,7 +7,12 @@ outputs of our code. Every model is usable as an aircraft inflow model through
 Conventions: inputs (dC_T, dC_L, dC_M) per rotor, outputs (lam0, lam1s, lam1c) per
 rotor, in the dissertation's (= our, :mod:`aircraft.inflow.base`) perturbation form
 ``M lam' + Lbar lam = dC(t - tau)`` with ``Lbar = [L]^-1``; delays in seconds,
-row-wise (Eq. 2.16). ``time`` says what ``M`` multiplies:
+row-wise (Eq. 2.16). The coaxial models are printed in one common frame for both
+rotors; ours mirrors the lower rotor's, so their cross-rotor lateral couplings
+change sign in our frames: :func:`in_rotor_frames` converts (derivation in
+:mod:`aircraft.identification.frames`; :meth:`IdentifiedInflow.from_published` keeps
+the printed frame, ``IdentifiedInflow.from_file("eq5_3")`` loads the converted model).
+``time`` says what ``M`` multiplies:
 
 * ``"azimuth"``: ``d/dpsi`` (dimensionless ``M``; Eq. 5.3, where M11 = 0.851 ~ 8/(3 pi));
 * ``"seconds"``: ``d/dt``, i.e. the printed numbers are ``M/Omega`` [s] (Tables
@@ -54,7 +59,7 @@ Suspected transcription errors and oddities (values are kept exactly as printed)
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -63,7 +68,8 @@ from .base import flap_rate_names, inflow_names, load_names
 __all__ = ["PublishedInflowModel", "PublishedFGCModel", "TABLE_4_1", "TABLE_4_2", "tables_4_1_4_2",
            "UH60_HOVER_MFW", "UH60_HOVER_PITT_PETERS", "UH60_HOVER_RFW", "UH60_MU01_MFW", "UH60_MU02_MFW",
            "COAXIAL_HOVER_6STATE", "COAXIAL_HOVER_12STATE", "COAXIAL_200KT_12STATE",
-           "COAXIAL_FORWARD_12STATE", "PUBLISHED_MODELS", "ALL_MODELS"]
+           "COAXIAL_FORWARD_12STATE", "PUBLISHED_MODELS", "ALL_MODELS", "in_rotor_frames",
+           "fgc_state_names"]
 
 #: UH-60-like rotor speed Omega_0 [rad/s] (Appendix B) and nominal trim C_T.
 _UH60_OMEGA, _UH60_CT = 27.0, 0.0061
@@ -98,6 +104,9 @@ class PublishedInflowModel:
     condition: dict = field(default_factory=dict)
     time: str = "azimuth"
     notes: str = ""
+    #: ``"printed"`` (the dissertation's common frame) or ``"rotor"`` (ours, see
+    #: :func:`in_rotor_frames`).
+    frame: str = "printed"
 
     @property
     def input_names(self):
@@ -131,6 +140,8 @@ class PublishedFGCModel:
     condition: dict = field(default_factory=dict)
     C: np.ndarray | None = None
     notes: str = ""
+    #: ``"printed"`` (the dissertation's common frame) or ``"rotor"`` (ours).
+    frame: str = "printed"
 
     def __post_init__(self):
         if self.C is None:     # lambda = lambda_N + lambda_F, states (0N, 0F, 1sN, 1sF, 1cN, 1cF) per rotor
@@ -152,6 +163,53 @@ class PublishedFGCModel:
     @property
     def output_names(self):
         return inflow_names(self.rotors)
+
+
+def fgc_state_names(rotors):
+    """States of Eq. 6.2: ``lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF`` per rotor."""
+    return [f"{h}{w}{'_' + r if r else ''}" for r in rotors
+            for h in ("lam0", "lam1s", "lam1c") for w in ("N", "F")]
+
+
+def in_rotor_frames(model, directions=None):
+    """A printed model converted into our per-rotor frames (the printed data stay as printed).
+
+    The dissertation writes both coaxial rotors in one common frame; ours gives
+    each rotor its own (mirrored for the clockwise lower rotor). The conversion
+    flips the signs of the cross-rotor lateral couplings only; it is derived and
+    documented in :mod:`aircraft.identification.frames`. Single-rotor models come
+    back unchanged (apart from ``frame``).
+
+    Parameters
+    ----------
+    model : PublishedInflowModel or PublishedFGCModel
+        A model with ``frame == "printed"``.
+    directions : dict, optional
+        Sense of rotation per rotor (default ``{"U": 1, "L": -1}`` for the coaxial,
+        ``{"": 1}`` for a single rotor).
+
+    Returns
+    -------
+    PublishedInflowModel or PublishedFGCModel
+        Same type, ``frame="rotor"``; delays unchanged.
+    """
+    from aircraft.identification.frames import COAXIAL_DIRECTIONS, FrameError, convert_frames
+    if model.frame != "printed":
+        raise FrameError(f"{model.name} is already in frame {model.frame!r}")
+    rotors = tuple(model.rotors)
+    if directions is None:
+        directions = {"": 1} if rotors == ("",) else COAXIAL_DIRECTIONS
+    loads, lam = load_names(rotors), inflow_names(rotors)
+    note = (model.notes + " Converted to our rotor frames (aircraft.identification.frames: "
+            "cross-rotor lateral couplings change sign).").strip()
+    if isinstance(model, PublishedFGCModel):
+        states = fgc_state_names(rotors)
+        cols = [c for c in model.input_order]
+        return replace(model, F=convert_frames(model.F, states, states, directions),
+                       G=convert_frames(model.G, states, cols, directions),
+                       C=convert_frames(model.C, lam, states, directions), notes=note, frame="rotor")
+    return replace(model, M=convert_frames(model.M, loads, lam, directions),
+                   L=convert_frames(model.L, loads, lam, directions), notes=note, frame="rotor")
 
 
 # --- Tables 4.1-4.2: UH-60-like single rotor in hover (M/Omega_0 [s], Lbar, tau [s]) ----------

@@ -1,0 +1,424 @@
+"""One call from a rotor to a trusted-or-not identified inflow model: :func:`identify_inflow`.
+
+::
+
+    wake trim ─► sweeps + doublet + zero-input run   (aircraft.wake.run_sweeps: parallel, cached)
+      ─► chirp-z responses (lambda, C over theta) ─► joint input-output (lambda/C)
+      ─► data-driven start (inverse of the low-frequency lambda/C)
+      ─► CIFER-cost fit ─► automatic reduction (Fig. 6.1)
+      ─► verification on the doublet (not used in the fit), beside the wake's
+         noise floor (the same TIC on a run with no input)
+
+The result, :class:`IdentifiedModel`, carries the cost table, the parameters
+with Cramér-Rao and insensitivity percentages, the verification, the settings
+with their hash and the provenance; ``.to_inflow()`` puts it into the aircraft,
+``.save(path)`` writes the versioned file of :mod:`aircraft.identification.store`.
+"""
+from __future__ import annotations
+
+import datetime
+import time
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from .store import SCHEMA, ModelRecord, settings_hash
+from .structures import InflowStructure, get_structure
+
+__all__ = ["IdentificationSettings", "IdentifiedModel", "PipelineError", "identify_inflow",
+           "identification_hash", "PIPELINE_VERSION"]
+
+#: Version of the pipeline's numerical recipe; part of every settings hash. Bump it
+#: when a change would alter an identified model (start, fit, reduction, signals).
+PIPELINE_VERSION = "pipeline-2"   # 2: apparent-mass diagonals protected in the reduction
+
+
+class PipelineError(RuntimeError):
+    """Raised when the identification cannot run (trim failure, missing excitation)."""
+
+
+@dataclass(frozen=True)
+class IdentificationSettings:
+    """Settings of :func:`identify_inflow` (SI units, radians).
+
+    Parameters
+    ----------
+    wake : WakeSettings, optional
+        Free-wake resolution (default: :class:`aircraft.wake.WakeSettings` defaults).
+    sweep_s : float
+        Length of each frequency sweep [s].
+    amplitude : float
+        Sweep amplitude [rad].
+    w_min, w_max : float
+        Sweep band and response band [rad/s].
+    fit_range : (float, float)
+        Band of the fit [rad/s].
+    doublet_amplitude, doublet_s, pulse_width : float
+        Verification doublet [rad], record [s], pulse [s]. It is larger than the
+        sweeps: the hover wake's own unsteadiness (~0.002 in lam0) would otherwise be
+        as large as its response.
+    doublet_control : str, optional
+        Control of the doublet (default: the structure's first, the collective).
+    noise_floor_s : float
+        Length of the zero-input run [s] whose TIC is the wake's noise floor.
+    start_points : int
+        Lowest frequencies averaged for the data-driven start.
+    reduce : bool
+        Run the automatic reduction (Fig. 6.1) after the first fit.
+    insensitivity_max, cramer_rao_max : float
+        Reduction thresholds [%] (guideline 10 % and 20 %).
+    n_omega : int
+        Frequencies per response in the cost (CIFER: 20).
+    coherence_min : float
+        Responses need this coherence on 5+ points to be fitted.
+    pade_order : int
+        Padé order of the delays in the aircraft model.
+    """
+
+    wake: object = None
+    sweep_s: float = 45.0
+    amplitude: float = 0.02
+    w_min: float = 0.7
+    w_max: float = 30.0
+    fit_range: tuple = (1.0, 25.0)
+    doublet_amplitude: float = 0.05
+    doublet_s: float = 4.0
+    pulse_width: float = 0.5
+    doublet_control: str | None = None
+    noise_floor_s: float = 4.0
+    start_points: int = 3
+    reduce: bool = True
+    insensitivity_max: float = 10.0
+    cramer_rao_max: float = 20.0
+    n_omega: int = 20
+    coherence_min: float = 0.6
+    pade_order: int = 2
+
+    def __post_init__(self):
+        if not 0 < self.w_min < self.w_max:
+            raise ValueError(f"need 0 < w_min < w_max [rad/s], got {self.w_min}, {self.w_max}")
+        lo, hi = self.fit_range
+        if not self.w_min <= lo < hi <= self.w_max:
+            raise ValueError(f"fit_range {self.fit_range} must lie inside ({self.w_min}, {self.w_max}) rad/s")
+        for name in ("sweep_s", "doublet_s", "noise_floor_s", "amplitude", "doublet_amplitude"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"{name} must be positive, got {getattr(self, name)!r}")
+        if self.start_points < 1:
+            raise ValueError("start_points must be >= 1")
+
+    @property
+    def wake_settings(self):
+        from aircraft.wake import WakeSettings
+        return self.wake if self.wake is not None else WakeSettings()
+
+    def to_dict(self):
+        d = asdict(self)
+        d["wake"] = asdict(self.wake_settings)
+        d["fit_range"] = list(self.fit_range)
+        return d
+
+
+def _trim_request(config, ct, trim):
+    if trim is not None:
+        return dict(trim)
+    if ct is None:
+        raise PipelineError("give the trim thrust ct (system C_T) or a trim request dict")
+    if len(config.rotors) == 1:
+        return {"ct": ct}
+    # coaxial: equal thrusts, torque-balanced (as in the dissertation's split, §5.4)
+    return {"ct": (ct / 2, ct / 2), "mode": "torque_balance", "tol": 1e-4}
+
+
+def identification_hash(config, condition, structure, settings=None, *, ct=None, trim=None):
+    """Hash of everything that determines an identified model (not jobs or cache).
+
+    Includes the configuration, flight condition, structure, trim request,
+    :class:`IdentificationSettings` (with the wake resolution), this pipeline's
+    :data:`PIPELINE_VERSION` and the wake code's cache version, so a shipped
+    model goes stale when any of them changes.
+    """
+    from aircraft.wake import sweeps as _sweeps
+    settings = settings or IdentificationSettings()
+    structure = get_structure(structure)
+    payload = {"schema": SCHEMA, "pipeline": PIPELINE_VERSION,
+               # the wake's own marker of result-changing code changes
+               "wake_code": getattr(_sweeps, "_CACHE_VERSION", "unknown"),
+               "config": repr(config), "condition": asdict(condition), "structure": structure.spec(),
+               "trim": _trim_request(config, ct, trim), "settings": settings.to_dict()}
+    return settings_hash(payload), payload
+
+
+def _code_version():
+    try:
+        from importlib.metadata import version
+        return version("rotorwake-id")
+    except Exception:   # noqa: BLE001 - not installed: the version is unknown, not an error
+        return "unknown"
+
+
+@dataclass
+class IdentifiedModel:
+    """Outcome of :func:`identify_inflow`.
+
+    Attributes
+    ----------
+    name : str
+    structure : InflowStructure
+    fit : flightid.FitResult
+        Final (reduced) fit.
+    reduction : flightid.ReductionResult or None
+    responses : flightid.MeasuredResponse
+        The joint input-output lambda/C (and lambda/beta_dot) responses fitted.
+    verification : flightid.VerificationResult
+        Doublet (not used in the fit).
+    noise_floor : flightid.VerificationResult
+        The same on the zero-input run: the TIC the wake's own unsteadiness gives.
+    trim : aircraft.wake.WakeTrim
+    omega : float
+        Rotor speed [rad/s].
+    settings : IdentificationSettings
+    settings_hash : str
+    provenance : dict
+    """
+
+    name: str
+    structure: InflowStructure
+    fit: object
+    reduction: object
+    responses: object
+    verification: object
+    noise_floor: object
+    trim: object
+    omega: float
+    settings: IdentificationSettings
+    settings_hash: str
+    provenance: dict = field(default_factory=dict)
+    hash_payload: dict = field(default_factory=dict)
+
+    @property
+    def cost_table(self) -> pd.DataFrame:
+        return self.fit.cost_table.drop(columns="J_ave", errors="ignore")
+
+    @property
+    def J_ave(self) -> float:
+        return float(self.fit.J_ave)
+
+    @property
+    def parameters(self) -> pd.DataFrame:
+        """parameter, value, status, cramer_rao_pct, insensitivity_pct."""
+        return self.fit.parameters.copy()
+
+    @property
+    def values(self) -> dict:
+        return dict(self.fit.structure.values)
+
+    @property
+    def verification_table(self) -> pd.DataFrame:
+        """Per output: doublet TIC beside the noise-floor TIC and the signal-to-floor ratio."""
+        v = self.verification.metrics.set_index("output")
+        f = self.noise_floor.metrics.set_index("output")
+        out = pd.DataFrame({"TIC": v.TIC, "TIC_noise_floor": f.TIC, "rms_error": v.rms_error,
+                            "rms_measured": v.rms_measured, "rms_noise_floor": f.rms_measured})
+        # below ~3x the wake's own unsteadiness the doublet TIC says nothing about the model
+        out["signal_to_floor"] = out.rms_measured / out.rms_noise_floor.where(out.rms_noise_floor > 0)
+        return out.reset_index()
+
+    @property
+    def trusted(self) -> bool:
+        """Every free parameter with CR < 20 % and insensitivity < 10 % (the guideline)."""
+        free = self.fit.parameters[self.fit.parameters.status == "free"]
+        return bool(len(free) and (free.cramer_rao_pct < 20).all() and (free.insensitivity_pct < 10).all())
+
+    def to_pandas(self) -> pd.DataFrame:
+        """The parameter table."""
+        return self.parameters
+
+    def plot(self, fig=None):
+        """Bode overlay of the fitted responses (data, model, coherence); a Figure."""
+        return self.fit.plot(fig=fig)
+
+    def _refs(self):
+        o = self.trim.outputs
+        loads_ref = np.array([o.get(n, 0.0) if n.startswith("CT") else 0.0 for n in self.structure.loads])
+        inflow_ref = np.array([o[n] for n in self.structure.outputs])
+        return loads_ref, inflow_ref
+
+    def to_inflow(self):
+        """The identified model as an :class:`aircraft.inflow.IdentifiedInflow` about the wake's trim."""
+        loads_ref, inflow_ref = self._refs()
+        return self.structure.to_inflow(self.values, self.omega, loads_ref=loads_ref, inflow_ref=inflow_ref,
+                                        pade_order=self.settings.pade_order, name=self.name)
+
+    def to_record(self, description="") -> ModelRecord:
+        """The versioned-file form (:class:`aircraft.identification.store.ModelRecord`)."""
+        mats = self.fit.structure.matrices()
+        loads_ref, inflow_ref = self._refs()
+        if self.structure.form == "mltau":
+            matrices = {"M": mats["M"], "L": mats["L"], "tau": mats["tau"]}
+        else:   # F, G per d/dpsi in the structure: store seconds
+            matrices = {"F": self.omega * mats["F"], "G": self.omega * mats["G"], "C": self.fit.structure.C}
+        return ModelRecord(
+            name=self.name, form=self.structure.form, rotors=self.structure.rotors, omega=self.omega,
+            matrices=matrices, inputs=self.structure.inputs, outputs=self.structure.outputs,
+            loads_ref=loads_ref, inflow_ref=inflow_ref, frame=self.structure.frame, time="azimuth",
+            pade_order=self.settings.pade_order, cost_table=self.cost_table, parameters=self.parameters,
+            verification=self.verification_table, trim_outputs=dict(self.trim.outputs),
+            settings=self.hash_payload, settings_hash=self.settings_hash, provenance=self.provenance,
+            description=description or f"{self.structure.key} identified from our free-vortex wake")
+
+    def save(self, path, description=""):
+        """Write the model file (JSON) to ``path``; returns the Path."""
+        return self.to_record(description).save(path)
+
+    def summary(self) -> str:
+        fmt = lambda v: f"{v:.4g}"   # noqa: E731
+        p = self.parameters
+        free = p[p.status == "free"]
+        lines = [f"== {self.name}: {self.structure.key} ({self.structure.frame} frames) ==",
+                 f"J_ave = {self.J_ave:.1f} over {len(self.cost_table)} responses; "
+                 f"max CR {free.cramer_rao_pct.max():.3g} %, max insensitivity "
+                 f"{free.insensitivity_pct.max():.3g} % -> {'trusted' if self.trusted else 'NOT trusted'}",
+                 self.cost_table.to_string(index=False, float_format=fmt),
+                 p.to_string(index=False, float_format=fmt),
+                 self.verification_table.to_string(index=False, float_format=fmt)]
+        return "\n".join(lines)
+
+
+def _responses(runs, specs, signals, settings):
+    from flightid import combine_responses, frequency_response
+    simo = []
+    for spec in specs:
+        df = runs[spec.name]
+        y = (df[signals] - df[signals].iloc[0]).to_numpy()
+        u = (df[spec.control] - df[spec.control].iloc[0]).to_numpy()
+        simo.append(frequency_response(df["t"].to_numpy(), u, y, w_min=settings.w_min, w_max=settings.w_max,
+                                       input_name=spec.control, output_names=signals))
+    return combine_responses(simo)
+
+
+def _verify(model, run, ref, inputs, outputs):
+    from flightid import verify
+    # perturbations about the trim's revolution averages (a single sample carries
+    # the wake's blade-passage scatter)
+    u = (run[inputs] - ref[inputs]).to_numpy().T
+    y = (run[outputs] - ref[outputs]).to_numpy().T
+    return verify(model, run["t"].to_numpy(), u, y, remove_initial=False)
+
+
+def identify_inflow(config, condition=None, structure="single_rotor_3state", *, ct=None, trim=None,
+                    settings=None, controls=None, name=None, n_jobs=2, cache_dir=".cache/wake",
+                    progress=True):
+    """Identify an inflow model of ``config`` from the free-vortex wake.
+
+    Parameters
+    ----------
+    config : aircraft.AircraftConfig
+        Rotor(s) to identify (one rotor or a coaxial pair).
+    condition : aircraft.wake.FlightCondition, optional
+        Flight condition (default hover).
+    structure : InflowStructure or str
+        Model structure (:class:`SingleRotor3State`, :class:`Coaxial6State`,
+        :class:`Coaxial12State` or a key of :data:`STRUCTURES`).
+    ct : float, optional
+        Trim thrust coefficient of the system (coaxial: split equally, torques
+        balanced).
+    trim : dict, optional
+        Full trim request for :func:`aircraft.wake.trim_wake` (overrides ``ct``).
+    settings : IdentificationSettings, optional
+    controls : list of str, optional
+        Controls to sweep (default ``structure.controls``; a model with flap-rate
+        inputs needs as many independent excitations as inputs, e.g. prescribed
+        tip-path-plane sweeps).
+    name : str, optional
+    n_jobs : int
+        Wake worker processes.
+    cache_dir : str or None
+        Wake run cache (see :func:`aircraft.wake.run_sweeps`).
+    progress : bool
+        tqdm progress over the stages, the wake runs and the reduction.
+
+    Returns
+    -------
+    IdentifiedModel
+
+    Raises
+    ------
+    PipelineError
+        If the wake trim fails or the excitation cannot separate the inputs.
+    """
+    from tqdm.auto import tqdm
+    from aircraft.wake import FlightCondition, SweepSpec, run_sweeps
+    from flightid import fit, joint_input_output, reduce
+
+    t_start = time.perf_counter()
+    settings = settings or IdentificationSettings()
+    condition = condition or FlightCondition()
+    structure = get_structure(structure)
+    rotor_names = tuple(r.name for r in config.rotors)
+    expected = ("",) if len(rotor_names) == 1 else structure.rotors
+    if len(rotor_names) != len(structure.rotors) or (len(rotor_names) > 1 and rotor_names != expected):
+        raise PipelineError(f"structure {structure.key} is for rotors {structure.rotors}; "
+                            f"the configuration has {rotor_names}")
+    controls = list(controls or structure.controls)
+    if len(controls) < len(structure.inputs):
+        raise PipelineError(f"{structure.key} has {len(structure.inputs)} inputs {structure.inputs} but only "
+                            f"{len(controls)} excitations {controls}: the joint input-output needs at least one "
+                            "independent excitation per input (flap-rate inputs need prescribed tip-path-plane "
+                            "sweeps, §6.3)")
+    trim_req = _trim_request(config, ct, trim)
+    digest, payload = identification_hash(config, condition, structure, settings, trim=trim_req)
+    s = settings
+    specs = [SweepSpec(c, kind="sweep", amplitude=s.amplitude, duration=s.sweep_s, w_min=s.w_min,
+                       w_max=s.w_max, seed=k) for k, c in enumerate(controls)]
+    dbl_control = s.doublet_control or controls[0]
+    doublet_spec = SweepSpec(dbl_control, kind="doublet", amplitude=s.doublet_amplitude, duration=s.doublet_s,
+                             pulse_width=s.pulse_width)
+    # no input at all: what is left is the wake's own unsteadiness (the noise floor)
+    zero_spec = SweepSpec(dbl_control, kind="sine", amplitude=0.0, duration=s.noise_floor_s, w_min=1.0,
+                          label="zero_input")
+    stages = tqdm(total=4, desc=f"identify {structure.key}", disable=not progress)
+    stages.set_postfix_str("wake trim + runs")
+    runs = run_sweeps(config, s.wake_settings, condition, specs + [doublet_spec, zero_spec], trim=trim_req,
+                      n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
+    wake_trim = runs["trim"]
+    if not wake_trim.converged:
+        stages.close()
+        raise PipelineError(f"wake trim did not converge (residual {wake_trim.residual:.2e})")
+    stages.update()
+    stages.set_postfix_str("responses")
+    missing = [n for n in structure.inputs + structure.outputs if n not in runs[specs[0].name]]
+    if missing:
+        stages.close()
+        raise PipelineError(f"the wake records lack signals {missing}")
+    measured = _responses(runs, specs, structure.inputs + structure.outputs, s)
+    responses = joint_input_output(measured.select(structure.outputs), measured.select(structure.inputs))
+    stages.update()
+    stages.set_postfix_str("fit + reduce")
+    omega = float(config.rotors[0].omega)
+    flight_structure = structure.build(structure.initial_values(responses, s.start_points), omega)
+    fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min)
+    if s.reduce:
+        reduction = reduce(flight_structure, responses, insensitivity_max=s.insensitivity_max,
+                           cramer_rao_max=s.cramer_rao_max, protected=structure.protected,
+                           progress=progress, **fit_kwargs)
+        result = reduction.result
+    else:
+        reduction, result = None, fit(flight_structure, responses, **fit_kwargs)
+    stages.update()
+    stages.set_postfix_str("verify")
+    model_ss = result.structure.to_statespace(pade_order=s.pade_order)
+    ref = pd.Series(wake_trim.outputs)
+    check = _verify(model_ss, runs[doublet_spec.name], ref, structure.inputs, structure.outputs)
+    floor = _verify(model_ss, runs[zero_spec.name], ref, structure.inputs, structure.outputs)
+    stages.update()
+    stages.close()
+    provenance = {"source": "aircraft.identification.identify_inflow", "schema": SCHEMA,
+                  "pipeline": PIPELINE_VERSION, "code_version": _code_version(),
+                  "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+                  "wall_s": round(time.perf_counter() - t_start, 1), "config": config.name
+                  if hasattr(config, "name") else repr(config)[:60]}
+    return IdentifiedModel(name=name or f"{structure.key} from the free wake", structure=structure,
+                           fit=result, reduction=reduction, responses=responses, verification=check,
+                           noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
+                           provenance=provenance, hash_payload=payload)

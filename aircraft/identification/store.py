@@ -1,0 +1,223 @@
+"""Identified inflow models as versioned data files (JSON, one file per model).
+
+A file holds everything needed to use and to judge a model without re-running
+the wake: the matrices (``M, Lbar, tau`` or ``F, G, C`` or ``A, B, C``), signal
+names, rotor speed, the trim it is a perturbation about, the cost table,
+parameters with Cramér-Rao and insensitivity percentages, the verification,
+the settings and their hash, and the code/schema version.
+
+Shipped models live in ``aircraft/data/models/<name>.json`` (package data);
+:func:`load_record` / :meth:`aircraft.inflow.IdentifiedInflow.from_file` take a
+path or such a name. ``python -m aircraft.identification.regenerate NAME``
+rebuilds one (see :mod:`aircraft.identification.regenerate`).
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["SCHEMA", "ModelRecord", "ModelFileError", "load_record", "shipped_models",
+           "shipped_model_path", "settings_hash"]
+
+#: File schema; bump when the layout changes (readers check it).
+SCHEMA = "rotorwake-id/inflow-model/1"
+
+
+class ModelFileError(ValueError):
+    """Raised for a missing, unreadable or inconsistent model file."""
+
+
+def _jsonable(x):
+    """Numbers, arrays and tables to plain JSON (NaN/inf -> None)."""
+    if isinstance(x, dict):
+        return {str(k): _jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return _jsonable(x.tolist())
+    if isinstance(x, pd.DataFrame):
+        return _jsonable(x.to_dict(orient="records"))
+    if isinstance(x, (np.bool_, bool)):
+        return bool(x)
+    if isinstance(x, (np.integer,)):
+        return int(x)
+    if isinstance(x, (float, np.floating)):
+        v = float(x)
+        return v if math.isfinite(v) else None
+    return x
+
+
+def settings_hash(payload):
+    """SHA-256 (first 16 hex digits) of a JSON-able payload in canonical form."""
+    import hashlib
+    text = json.dumps(_jsonable(payload), sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _table(rows):
+    df = pd.DataFrame(rows or [])
+    return df.astype({c: float for c in df.columns if df[c].dtype == object and
+                      all(v is None or isinstance(v, (int, float)) for v in df[c])})
+
+
+@dataclass
+class ModelRecord:
+    """One identified inflow model as stored on disk.
+
+    Attributes
+    ----------
+    name : str
+    form : {"mltau", "fgc", "statespace"}
+    rotors : tuple of str
+    omega : float
+        Rotor speed [rad/s].
+    matrices : dict of ndarray
+        ``M, L, tau`` (``M`` per d/dpsi, ``tau`` [s]); or ``F, G, C`` [1/s]; or
+        ``A, B, C`` [1/s] of a ready state-space model.
+    inputs, outputs : list of str
+        Canonical signal names (loads then flap rates; inflow).
+    loads_ref, inflow_ref : ndarray
+        Trim loads and total inflow the model is a perturbation about.
+    frame : str
+        ``"rotor"`` (ours) or ``"printed"``.
+    cost_table, parameters, verification : DataFrame
+    settings : dict
+    settings_hash : str
+    provenance : dict
+        ``code_version``, ``schema``, ``source``, ``created``, ``wall_s``, ...
+    description : str
+    """
+
+    name: str
+    form: str
+    rotors: tuple
+    omega: float
+    matrices: dict
+    inputs: list
+    outputs: list
+    loads_ref: np.ndarray
+    inflow_ref: np.ndarray
+    frame: str = "rotor"
+    time: str = "azimuth"
+    pade_order: int = 2
+    cost_table: pd.DataFrame = field(default_factory=pd.DataFrame)
+    parameters: pd.DataFrame = field(default_factory=pd.DataFrame)
+    verification: pd.DataFrame = field(default_factory=pd.DataFrame)
+    trim_outputs: dict = field(default_factory=dict)
+    settings: dict = field(default_factory=dict)
+    settings_hash: str = ""
+    provenance: dict = field(default_factory=dict)
+    description: str = ""
+
+    def __post_init__(self):
+        if self.form not in ("mltau", "fgc", "statespace"):
+            raise ModelFileError(f"{self.name}: unknown model form {self.form!r}")
+        need = {"mltau": ("M", "L", "tau"), "fgc": ("F", "G", "C"), "statespace": ("A", "B", "C")}[self.form]
+        missing = [k for k in need if k not in self.matrices]
+        if missing:
+            raise ModelFileError(f"{self.name}: form {self.form!r} needs matrices {missing}")
+        self.matrices = {k: np.asarray(v, float) for k, v in self.matrices.items()}
+        self.rotors = tuple(self.rotors)
+        self.loads_ref = np.asarray(self.loads_ref, float)
+        self.inflow_ref = np.asarray(self.inflow_ref, float)
+
+    @property
+    def J_ave(self):
+        """Mean CIFER cost of the fit (NaN for a model without a cost table)."""
+        return float(self.cost_table.J.mean()) if "J" in self.cost_table else float("nan")
+
+    # -- conversion ------------------------------------------------------------------
+    def to_inflow(self, pade_order=None):
+        """The model as an :class:`aircraft.inflow.IdentifiedInflow` about its trim."""
+        import control
+        from aircraft.inflow import IdentifiedInflow
+        m = self.matrices
+        kw = dict(loads_ref=self.loads_ref, inflow_ref=self.inflow_ref, name=self.name)
+        if self.form == "mltau":
+            return IdentifiedInflow.from_matrices(m["M"], m["L"], m["tau"], omega=self.omega, rotors=self.rotors,
+                                                  time=self.time, pade_order=pade_order or self.pade_order, **kw)
+        if self.form == "fgc":
+            return IdentifiedInflow.from_fgc(m["F"], m["G"], m["C"], rotors=self.rotors,
+                                             input_order=self.inputs, **kw)
+        sys = control.ss(m["A"], m["B"], m["C"], np.zeros((m["C"].shape[0], m["B"].shape[1])),
+                         inputs=self.inputs, outputs=self.outputs)
+        return IdentifiedInflow(sys, self.rotors, **kw)
+
+    def to_dict(self):
+        return _jsonable({
+            "schema": SCHEMA, "name": self.name, "description": self.description, "form": self.form,
+            "rotors": list(self.rotors), "omega_rad_s": self.omega, "time": self.time, "frame": self.frame,
+            "pade_order": self.pade_order, "inputs": self.inputs, "outputs": self.outputs,
+            "matrices": self.matrices,
+            "trim": {"loads_ref": self.loads_ref, "inflow_ref": self.inflow_ref, "outputs": self.trim_outputs},
+            "J_ave": self.J_ave, "cost_table": self.cost_table, "parameters": self.parameters,
+            "verification": self.verification, "settings": self.settings,
+            "settings_hash": self.settings_hash, "provenance": self.provenance})
+
+    def save(self, path):
+        """Write the record as JSON to ``path`` (a file name); returns the Path."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(self.to_dict(), indent=1) + "\n")
+        return path
+
+    @classmethod
+    def from_dict(cls, d, source="<dict>"):
+        if d.get("schema") != SCHEMA:
+            raise ModelFileError(f"{source}: schema {d.get('schema')!r}, this code reads {SCHEMA!r}")
+        try:
+            trim = d["trim"]
+            return cls(name=d["name"], form=d["form"], rotors=tuple(d["rotors"]), omega=float(d["omega_rad_s"]),
+                       matrices={k: np.array(v, float) for k, v in d["matrices"].items()},
+                       inputs=list(d["inputs"]), outputs=list(d["outputs"]),
+                       loads_ref=np.array(trim["loads_ref"], float), inflow_ref=np.array(trim["inflow_ref"], float),
+                       frame=d.get("frame", "rotor"), time=d.get("time", "azimuth"),
+                       pade_order=int(d.get("pade_order", 2)), cost_table=_table(d.get("cost_table")),
+                       parameters=_table(d.get("parameters")), verification=_table(d.get("verification")),
+                       trim_outputs=dict(trim.get("outputs") or {}), settings=d.get("settings") or {},
+                       settings_hash=d.get("settings_hash", ""), provenance=d.get("provenance") or {},
+                       description=d.get("description", ""))
+        except KeyError as err:
+            raise ModelFileError(f"{source}: missing field {err}") from err
+
+
+def _models_dir():
+    return Path(str(resources.files("aircraft") / "data" / "models"))
+
+
+def shipped_models():
+    """Names of the model files shipped in ``aircraft/data/models``."""
+    return sorted(p.stem for p in _models_dir().glob("*.json"))
+
+
+def shipped_model_path(name):
+    """Path of the shipped model file ``name`` (whether it exists or not)."""
+    return _models_dir() / f"{name}.json"
+
+
+def load_record(path_or_name):
+    """Read a model file: a path to a ``.json`` file or the name of a shipped model.
+
+    Raises
+    ------
+    ModelFileError
+        If the file does not exist, is not JSON or has another schema.
+    """
+    p = Path(path_or_name)
+    if not p.suffix and not p.exists():
+        p = shipped_model_path(str(path_or_name))
+        if not p.exists():
+            raise ModelFileError(f"no shipped model {path_or_name!r}; shipped: {shipped_models()}")
+    if not p.exists():
+        raise ModelFileError(f"model file {p} does not exist")
+    try:
+        d = json.loads(p.read_text())
+    except json.JSONDecodeError as err:
+        raise ModelFileError(f"{p} is not valid JSON: {err}") from err
+    return ModelRecord.from_dict(d, source=str(p))

@@ -1,0 +1,412 @@
+"""The dissertation's inflow model structures as library objects, in our rotor frames.
+
+Each structure knows its signals (swashplate controls swept, load and flap-rate
+inputs, inflow outputs), builds the :mod:`flightid` parametric structure
+(:class:`flightid.MLTauStructure` / :class:`flightid.FGCStructure`) from initial
+values, proposes a data-driven start from measured lambda/C responses, maps a
+printed model onto its parameters, and turns fitted values into an
+:class:`aircraft.inflow.IdentifiedInflow`.
+
+=======================  ===============================================  ==========
+structure                form                                             parameters
+=======================  ===============================================  ==========
+:class:`SingleRotor3State`  Tables 4.1-4.2: diagonal M, Lbar, tau, cyclic tied   6
+:class:`Coaxial6State`      Eq. 5.3 / §5.3: 2x2 blocks of diagonal 3x3, ties     24
+:class:`Coaxial12State`     Eqs. 6.2-6.3: near/far wake F/G/C, flap-rate inputs  66 (42 tied)
+=======================  ===============================================  ==========
+
+``M`` multiplies d/dpsi (rotor-azimuth time, dimensionless, Eq. 5.3; Tables 4.1-4.2
+print ``M/Omega`` in seconds: divide by Omega); delays are in seconds. The frame
+conversion from the printed common frame is :mod:`aircraft.identification.frames`:
+in our frames the hover roll/pitch symmetry ties the *cross-rotor* cosine terms
+to the sine terms with a minus sign (``m36 = -m25``, ``m63 = -m52``), while the
+dissertation's common frame ties them with a plus sign.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from aircraft.inflow.base import flap_rate_names, inflow_names, load_names
+from aircraft.inflow.published import fgc_state_names
+
+__all__ = ["InflowStructure", "SingleRotor3State", "Coaxial6State", "Coaxial12State",
+           "STRUCTURES", "get_structure"]
+
+_PP_M11 = 8.0 / (3.0 * math.pi)          # Pitt-Peters hover apparent mass (azimuth time)
+_PP_M22 = -16.0 / (45.0 * math.pi)
+
+
+def _low_frequency_inverse(lam_over_c, n_points):
+    """Inverse of the real part of the measured lambda/C at its lowest frequencies.
+
+    This is the quasi-steady Lbar (``lambda = Lbar^-1 C`` at s -> 0); the mean over
+    the ``n_points`` lowest frequencies averages the sweep's low-frequency noise.
+    """
+    g0 = np.real(lam_over_c.frdata[:, :, :n_points].mean(axis=2))
+    try:
+        return np.linalg.inv(g0)
+    except np.linalg.LinAlgError as err:
+        raise np.linalg.LinAlgError("measured low-frequency lambda/C is singular: "
+                                    "no data-driven start") from err
+
+
+class InflowStructure:
+    """Base class of the structures (see the module table).
+
+    Attributes
+    ----------
+    key : str
+        Short name (``"single_rotor_3state"``, ...), used in files and hashes.
+    rotors : tuple of str
+    controls : list of str
+        Swashplate controls swept by the pipeline (one sweep each).
+    frame : {"rotor", "printed"}
+        ``"rotor"``: our per-rotor frames (default); ``"printed"``: the
+        dissertation's common frame (for comparisons only).
+    """
+
+    key = ""
+    rotors = ("",)
+    form = "mltau"
+    uses_flap_rates = False
+
+    def __init__(self, frame="rotor"):
+        if frame not in ("rotor", "printed"):
+            raise ValueError(f"frame must be 'rotor' or 'printed', got {frame!r}")
+        self.frame = frame
+
+    # -- signals ---------------------------------------------------------------
+    @property
+    def controls(self):
+        return [f"{c}{'_' + r if r else ''}" for r in self.rotors for c in ("theta0", "theta1s", "theta1c")]
+
+    @property
+    def loads(self):
+        return load_names(self.rotors)
+
+    @property
+    def rates(self):
+        return flap_rate_names(self.rotors) if self.uses_flap_rates else []
+
+    @property
+    def inputs(self):
+        """Model inputs: loads, then flap rates (canonical order of :class:`IdentifiedInflow`)."""
+        return self.loads + self.rates
+
+    @property
+    def outputs(self):
+        return inflow_names(self.rotors)
+
+    #: Parameters the automatic reduction never removes: the diagonal apparent
+    #: masses (or near-wake poles). Without one a state has no dynamics of its own;
+    #: on the coarse coaxial wake removing m22 left the cyclic M with det 5e-5 and
+    #: a 7600 1/s pole.
+    protected = ()
+
+    def spec(self):
+        """What identifies this structure in a settings hash (dict of str)."""
+        return {"key": self.key, "frame": self.frame, "form": self.form, "protected": list(self.protected)}
+
+    def __repr__(self):
+        return f"{type(self).__name__}(frame={self.frame!r})"
+
+    # -- to implement ----------------------------------------------------------
+    def build(self, initial, omega, fixed=()):
+        """The :mod:`flightid` structure with ``initial`` values, ``omega`` [rad/s]."""
+        raise NotImplementedError
+
+    def initial_values(self, lam_over_c, n_points=3):
+        """Data-driven start from measured lambda/C (a :class:`flightid.MeasuredResponse`)."""
+        raise NotImplementedError
+
+    def published_values(self, model):
+        """Parameter values of a printed model (converted to ``self.frame``)."""
+        raise NotImplementedError
+
+    def to_inflow(self, values, omega, *, loads_ref=None, inflow_ref=None, pade_order=2, name=None):
+        """An :class:`aircraft.inflow.IdentifiedInflow` at parameter ``values``."""
+        from aircraft.inflow import IdentifiedInflow
+        mats = self.build(values, omega).matrices()
+        name = name or f"identified {self.key}"
+        if self.form == "mltau":
+            return IdentifiedInflow.from_matrices(mats["M"], mats["L"], mats["tau"], omega=omega,
+                                                  rotors=self.rotors, time="azimuth", loads_ref=loads_ref,
+                                                  inflow_ref=inflow_ref, pade_order=pade_order, name=name)
+        c = self.build(values, omega).C
+        # FGCStructure with omega: x' = F x + G u in d/dpsi; seconds: Omega F, Omega G
+        return IdentifiedInflow.from_fgc(omega * mats["F"], omega * mats["G"], c, rotors=self.rotors,
+                                         input_order=self.inputs, loads_ref=loads_ref,
+                                         inflow_ref=inflow_ref, name=name)
+
+
+class SingleRotor3State(InflowStructure):
+    """3-state single rotor in hover (Tables 4.1-4.2; Pitt-Peters form, §4.3).
+
+    Diagonal ``M``, ``Lbar``, ``tau``; the cyclic rows are tied by hover symmetry
+    (``m22 = m33``, ``l22 = l33``, ``t22 = t33``, §4.3.1.2): 6 parameters. A single
+    rotor has one frame, so ``frame`` does not matter.
+    """
+
+    key = "single_rotor_3state"
+    rotors = ("",)
+    protected = ("m11", "m22")
+
+    def build(self, initial, omega, fixed=()):
+        from flightid import MLTauStructure
+        diag = lambda p: [[f"{p}11", 0, 0], [0, f"{p}22", 0], [0, 0, f"{p}22"]]   # noqa: E731
+        return MLTauStructure(diag("m"), diag("l"), diag("t"), inputs=self.inputs, outputs=self.outputs,
+                              initial=dict(initial), fixed=fixed, omega=omega)
+
+    def initial_values(self, lam_over_c, n_points=3):
+        """``l11``, ``l22`` from the inverted low-frequency lambda/C (the cyclic value
+        is the mean of the 1s and 1c diagonals); Pitt-Peters ``M``; 20 ms delays."""
+        l0 = _low_frequency_inverse(lam_over_c, n_points)
+        return {"m11": _PP_M11, "m22": _PP_M22, "l11": float(l0[0, 0]),
+                "l22": float(0.5 * (l0[1, 1] + l0[2, 2])), "t11": 0.02, "t22": 0.02}
+
+    def published_values(self, model):
+        m = model.M * model.omega if model.time == "seconds" else model.M   # to azimuth time
+        return {"m11": float(m[0, 0]), "m22": float(m[1, 1]), "l11": float(model.L[0, 0]),
+                "l22": float(model.L[1, 1]), "t11": float(model.tau[0, 0]), "t22": float(model.tau[1, 1])}
+
+
+#: The 24 free parameters of §5.3 (rows 3 and 6 repeat 2 and 5 by ties).
+_COAX6_FREE = [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)]
+
+
+class Coaxial6State(InflowStructure):
+    """6-state coaxial rotor in hover (Eq. 5.3, the 24-parameter structure of §5.3).
+
+    Each 3x3 block of ``M``, ``Lbar``, ``tau`` is diagonal; the 1c rows repeat the 1s
+    rows (hover roll/pitch symmetry). In our rotor frames (default) the cross-rotor
+    cosine terms are tied to the sine terms with opposite sign for ``M`` and ``Lbar``
+    (``m36 = -m25``, ``m63 = -m52``, ``l36 = -l25``, ``l63 = -l52``); in the printed
+    frame with the same sign, as §5.3 lists them. Delays are durations and keep
+    plain ties.
+    """
+
+    key = "coaxial_6state"
+    rotors = ("U", "L")
+    protected = ("m11", "m22", "m44", "m55")
+
+    def build(self, initial, omega, fixed=()):
+        from flightid import MLTauStructure
+        sign = "-" if self.frame == "rotor" else ""
+
+        def pattern(p, s):
+            return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
+                    [0, f"{p}22", 0, 0, f"{p}25", 0],
+                    [0, 0, f"{p}22", 0, 0, f"{s}{p}25"],
+                    [f"{p}41", 0, 0, f"{p}44", 0, 0],
+                    [0, f"{p}52", 0, 0, f"{p}55", 0],
+                    [0, 0, f"{s}{p}52", 0, 0, f"{p}55"]]
+        return MLTauStructure(pattern("m", sign), pattern("l", sign), pattern("t", ""),
+                              inputs=self.inputs, outputs=self.outputs, initial=dict(initial),
+                              fixed=fixed, omega=omega)
+
+    def initial_values(self, lam_over_c, n_points=3):
+        """``Lbar`` from the inverse of the measured low-frequency lambda/C (real part,
+        mean of the ``n_points`` lowest frequencies); ``M`` diagonal from Pitt-Peters
+        in hover, cyclic cross terms 0.05 and collective cross terms 0; delays
+        20 ms (own rotor) and 50 ms (cross). A start from the printed Eq. 5.3 values
+        ended in a degenerate, near-singular ``M`` (J_ave 1300) in our wake."""
+        l0 = _low_frequency_inverse(lam_over_c, n_points)
+        init = {"m11": _PP_M11, "m44": _PP_M11, "m22": _PP_M22, "m55": _PP_M22, "m14": 0.0, "m41": 0.0,
+                "m25": 0.05, "m52": 0.05, "t11": 0.02, "t22": 0.02, "t44": 0.02, "t55": 0.02,
+                "t14": 0.05, "t41": 0.05, "t25": 0.05, "t52": 0.05}
+        for i, j in _COAX6_FREE:
+            init[f"l{i}{j}"] = float(l0[i - 1, j - 1])
+        return init
+
+    def published_values(self, model):
+        """Eq. 5.3's values on the 24 parameters, converted to ``self.frame``."""
+        from aircraft.inflow.published import in_rotor_frames
+        if self.frame == "rotor" and model.frame == "printed":
+            model = in_rotor_frames(model)
+        vals = {}
+        for name, mat in (("m", model.M), ("l", model.L), ("t", model.tau)):
+            for i, j in _COAX6_FREE:
+                vals[f"{name}{i}{j}"] = float(mat[i - 1, j - 1])
+        return vals
+
+
+# Eq. 6.3's pattern, 1-based (row, column) in Eq. 6.2's state and input order
+# (inputs CT_U, CL_U, b1s_U, CM_U, b1c_U, CT_L, CL_L, b1s_L, CM_L, b1c_L). The
+# printed G has 11 columns; its rows 6 and 12 put the far-wake 1c flap-rate term
+# of the other rotor in an 11th column, read here as the 10th (Eq. 6.9 prints
+# these entries, +0.255 and +0.330, in column 10).
+_EQ62_INPUTS = ["CT_U", "CL_U", "beta1s_dot_U", "CM_U", "beta1c_dot_U",
+                "CT_L", "CL_L", "beta1s_dot_L", "CM_L", "beta1c_dot_L"]
+
+
+def _g_free():
+    """G's free entries: per rotor's rows (lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF):
+    lam0N <- both CT; lam0F <- the lower rotor's CT (as printed); lam1sN <- CL, b1s;
+    lam1sF <- b1s; lam1cN <- CM, b1c; lam1cF <- b1c, each from both rotors."""
+    out = set()
+    for r0 in (0, 6):
+        out |= {(r0 + 1, 1), (r0 + 1, 6), (r0 + 2, 6)}
+        out |= {(r0 + 3, c + o) for c in (2, 3) for o in (0, 5)}
+        out |= {(r0 + 4, 3), (r0 + 4, 8)}
+        out |= {(r0 + 5, c + o) for c in (4, 5) for o in (0, 5)}
+        out |= {(r0 + 6, 5), (r0 + 6, 10)}
+    return sorted(out)
+
+
+def _f_free():
+    out = set()
+    for r0 in (0, 6):
+        for c0 in (0, 6):
+            # per harmonic: near <- near; far <- near and far (Eq. 6.1 form, every rotor pair)
+            for h in (0, 2, 4):
+                out |= {(r0 + h + 1, c0 + h + 1), (r0 + h + 2, c0 + h + 1), (r0 + h + 2, c0 + h + 2)}
+    return sorted(out)
+
+
+_G_FREE = _g_free()
+_F_FREE = _f_free()
+# 1s <-> 1c partners (1-based, Eq. 6.2 orders) for the hover symmetry ties
+_STATE_PARTNER = {3: 5, 4: 6, 9: 11, 10: 12}
+_INPUT_PARTNER = {2: 4, 3: 5, 7: 9, 8: 10}
+_UPPER_STATES, _UPPER_INPUTS = set(range(1, 7)), set(range(1, 6))
+
+
+class Coaxial12State(InflowStructure):
+    """12-state near/far-wake coaxial model with flap-rate inputs (Eqs. 6.2-6.3, 6.8-6.9).
+
+    States (Eq. 6.2) ``lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF`` per rotor,
+    ``lambda = lambda_N + lambda_F``; inputs the loads and the flap rates
+    ``beta1s_dot, beta1c_dot`` [rad/s] per rotor (canonical order; Eq. 6.2's own order
+    is kept in the parameter names ``f<row>_<col>``, ``g<row>_<col>``, 1-based).
+    Free entries: Eq. 6.3's pattern, 66 (F 36, G 30). With ``tied=True`` (default) the 1c rows
+    repeat the 1s rows (hover symmetry), with a minus sign on cross-rotor entries
+    in our rotor frames (as for :class:`Coaxial6State`); ``tied=False`` frees every
+    entry of the pattern (it then represents the printed Eqs. 6.8-6.9 exactly,
+    whose 1s and 1c moment columns carry opposite signs, see
+    :mod:`aircraft.inflow.published`). Identifying it needs flap-rate excitation
+    independent of the loads (prescribed tip-path-plane sweeps, §6.3); the
+    pipeline checks for it.
+    """
+
+    key = "coaxial_12state"
+    rotors = ("U", "L")
+    form = "fgc"
+    uses_flap_rates = True
+    protected = tuple(f"f{k}_{k}" for k in range(1, 13))
+
+    def __init__(self, frame="rotor", tied=True):
+        super().__init__(frame)
+        self.tied = bool(tied)
+
+    def spec(self):
+        return {**super().spec(), "tied": self.tied}
+
+    def __repr__(self):
+        return f"Coaxial12State(frame={self.frame!r}, tied={self.tied})"
+
+    @property
+    def states(self):
+        return fgc_state_names(self.rotors)
+
+    def _name(self, p, i, j):
+        """Parameter name of entry (i, j) (1-based), following the ties."""
+        partner_col = _STATE_PARTNER if p == "f" else _INPUT_PARTNER
+        if self.tied and i in _STATE_PARTNER.values() and j in partner_col.values():
+            ii = next(k for k, v in _STATE_PARTNER.items() if v == i)
+            jj = next(k for k, v in partner_col.items() if v == j)
+            cross = (i in _UPPER_STATES) != (j in (_UPPER_STATES if p == "f" else _UPPER_INPUTS))
+            sign = "-" if (cross and self.frame == "rotor") else ""
+            return f"{sign}{p}{ii}_{jj}"
+        return f"{p}{i}_{j}"
+
+    def build(self, initial, omega, fixed=()):
+        from flightid import FGCStructure
+        F = [[0] * 12 for _ in range(12)]
+        for i, j in _F_FREE:
+            F[i - 1][j - 1] = self._name("f", i, j)
+        G62 = [[0] * 10 for _ in range(12)]
+        for i, j in _G_FREE:
+            G62[i - 1][j - 1] = self._name("g", i, j)
+        # columns to the canonical input order (loads, then flap rates)
+        G = [[row[_EQ62_INPUTS.index(c)] for c in self.inputs] for row in G62]
+        C = np.zeros((6, 12))
+        for k in range(6):
+            C[k, 2 * k] = C[k, 2 * k + 1] = 1.0
+        names = {n.lstrip("-") for row in F + G for n in row if isinstance(n, str)}
+        init = {n: float(v) for n, v in dict(initial).items() if n in names}
+        missing = names - set(init)
+        if missing:
+            raise KeyError(f"no initial value for {sorted(missing)[:6]}... ({len(missing)} parameters)")
+        return FGCStructure(F, G, C, inputs=self.inputs, outputs=self.outputs, initial=init,
+                            fixed=[f for f in fixed if f in names], omega=omega, states=self.states)
+
+    def parameter_names(self):
+        """Names of the structure's parameters (after ties)."""
+        return sorted({self._name("f", i, j).lstrip("-") for i, j in _F_FREE}
+                      | {self._name("g", i, j).lstrip("-") for i, j in _G_FREE})
+
+    def initial_values(self, lam_over_c, n_points=3):
+        """A near/far split of the quasi-steady 6-state model: near-wake states get
+        ``-Lbar_ii / M_ii`` poles (Pitt-Peters ``M``, ``Lbar`` from the inverted
+        low-frequency lambda/C over the load inputs) and ``1/M_ii`` load gains; far-wake
+        states a pole at -0.25/rev and small flap-rate gains (azimuth time)."""
+        loads = [lam_over_c.input_labels.index(c) for c in self.loads]
+        g0 = np.real(lam_over_c.frdata[:, loads, :n_points].mean(axis=2))
+        l0 = np.linalg.inv(g0)
+        m = np.array([_PP_M11, _PP_M22, _PP_M22] * 2)
+        vals = {n: 0.0 for n in self.parameter_names()}
+        for k in range(6):
+            near = 2 * k + 1      # 1-based state of lam_k near
+            vals[self._name("f", near, near).lstrip("-")] = -abs(l0[k, k] / m[k])
+            vals[self._name("f", near + 1, near + 1).lstrip("-")] = -0.25
+        for (i, j) in _G_FREE:
+            name = self._name("g", i, j).lstrip("-")
+            col = _EQ62_INPUTS[j - 1]
+            if col in self.loads and i % 2 == 1:     # near-wake row, load input
+                k = (i - 1) // 2
+                if self.loads.index(col) == k:
+                    vals[name] = 1.0 / m[k]
+            elif "beta" in col:
+                vals[name] = vals[name] or 0.01
+        return vals
+
+    def published_values(self, model):
+        """Eqs. 6.8-6.9 (converted to ``self.frame``, F and G per d/dpsi) on the parameters.
+
+        Only exact for ``tied=False``; with ties the 1s entry is taken.
+        """
+        from aircraft.inflow.published import in_rotor_frames
+        if self.frame == "rotor" and model.frame == "printed":
+            model = in_rotor_frames(model)
+        F = model.F / model.omega
+        cols = list(model.input_order)
+        G = model.G[:, [cols.index(c) for c in _EQ62_INPUTS]] / model.omega
+        vals = {}
+        for i, j in _F_FREE:
+            name = self._name("f", i, j)
+            if name.lstrip("-") == f"f{i}_{j}":
+                vals[f"f{i}_{j}"] = float(F[i - 1, j - 1])
+        for i, j in _G_FREE:
+            name = self._name("g", i, j)
+            if name.lstrip("-") == f"g{i}_{j}":
+                vals[f"g{i}_{j}"] = float(G[i - 1, j - 1])
+        return vals
+
+
+#: The structures by key.
+STRUCTURES = {"single_rotor_3state": SingleRotor3State, "coaxial_6state": Coaxial6State,
+              "coaxial_12state": Coaxial12State}
+
+
+def get_structure(structure):
+    """A structure instance from an instance, a class or a key of :data:`STRUCTURES`."""
+    if isinstance(structure, InflowStructure):
+        return structure
+    if isinstance(structure, type) and issubclass(structure, InflowStructure):
+        return structure()
+    if isinstance(structure, str) and structure in STRUCTURES:
+        return STRUCTURES[structure]()
+    raise ValueError(f"unknown inflow structure {structure!r}; use one of {sorted(STRUCTURES)} "
+                     "or an InflowStructure")

@@ -1,0 +1,99 @@
+"""End to end: aircraft.identify_inflow on a tiny free wake (single rotor, 3-state)."""
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from matplotlib.figure import Figure
+
+from aircraft import IdentificationSettings, identify_inflow
+from aircraft.configs import coaxial_compound, uh60_single_rotor
+from aircraft.identification import (Coaxial6State, Coaxial12State, PipelineError, SingleRotor3State,
+                                     identification_hash, load_record)
+from aircraft.inflow import IdentifiedInflow
+from aircraft.wake import FlightCondition, WakeSettings
+
+CT = 0.0061
+# tiny wake: 20 deg steps, 1.5 revolutions, 5 elements, 20 s sweeps from 1.2 rad/s
+# (about 50 s of one core; the default resolution is what the shipped model uses)
+TINY = IdentificationSettings(wake=WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5,
+                                                n_elements=5),
+                              sweep_s=20.0, w_min=1.2, fit_range=(1.2, 20.0), doublet_s=3.0, noise_floor_s=3.0)
+
+
+@pytest.fixture(scope="module")
+def model():
+    return identify_inflow(uh60_single_rotor(), FlightCondition(), SingleRotor3State(), ct=CT, settings=TINY,
+                           n_jobs=1, cache_dir=None, progress=False)
+
+
+def test_pipeline_identifies_a_pitt_peters_like_model(model):
+    assert model.trim.converged
+    v = model.values
+    # signs of Tables 4.1-4.2 (our convention, Pitt-Peters: M11, Lbar11 > 0; M22, Lbar22 < 0)
+    assert v["m11"] > 0 and v["m22"] < 0 and v["l11"] > 0 and v["l22"] < 0
+    # quasi-steady lam0/C_T = 1/Lbar11 against momentum theory 1/(4 lambda_h). On this
+    # 20 deg, 1.5-revolution wake it came out 1.34x (1.24x at 15 deg); 1.5x bounds a
+    # wrong sign, a factor-2 error or a fit that ran away. The 30 % accuracy claim is
+    # checked on the shipped default-resolution model (test_model_store.py).
+    lam_h = math.sqrt(model.trim.outputs["CT"] / 2)
+    assert 0.7 < (1 / v["l11"]) * 4 * lam_h < 1.5
+    assert model.J_ave < 100
+    assert list(model.cost_table.columns) == ["output", "input", "w_min", "w_max", "J"]
+    assert {"cramer_rao_pct", "insensitivity_pct"} <= set(model.to_pandas().columns)
+    assert model.reduction is not None
+
+
+def test_verification_sits_beside_the_noise_floor(model):
+    table = model.verification_table
+    assert list(table.output) == ["lam0", "lam1s", "lam1c"]
+    lam0 = table.set_index("output").loc["lam0"]
+    # the doublet excites lam0 above the wake's own unsteadiness, and the model predicts
+    # it better than the zero-input run's floor (what "no model skill" looks like)
+    assert lam0.signal_to_floor > 1.2
+    assert lam0.TIC < lam0.TIC_noise_floor
+    # a collective doublet leaves the cyclic inflow at round-off in axisymmetric hover
+    assert (table.set_index("output").loc[["lam1s", "lam1c"], "rms_measured"] < 1e-8).all()
+
+
+def test_model_goes_into_the_aircraft_and_into_a_file(model, tmp_path):
+    inflow = model.to_inflow()
+    assert isinstance(inflow, IdentifiedInflow)
+    np.testing.assert_allclose(inflow.inflow_ref, [model.trim.outputs[n] for n in ("lam0", "lam1s", "lam1c")])
+    import control
+    dc = control.dcgain(inflow.system)
+    assert dc[0, 0] == pytest.approx(1 / model.values["l11"], rel=1e-6)
+    path = model.save(tmp_path / "m.json")
+    back = IdentifiedInflow.from_file(path)
+    w = [0.5, 5.0, 20.0]
+    np.testing.assert_allclose([back.system(1j * x) for x in w], [inflow.system(1j * x) for x in w], rtol=1e-10)
+    rec = load_record(path)
+    assert rec.settings_hash == identification_hash(uh60_single_rotor(), FlightCondition(), SingleRotor3State(),
+                                                    TINY, ct=CT)[0]
+    pd.testing.assert_frame_equal(rec.parameters.reset_index(drop=True), model.parameters.reset_index(drop=True),
+                                  check_dtype=False)
+    assert isinstance(model.plot(), Figure)
+    assert "J_ave" in model.summary()
+
+
+def test_settings_hash_tracks_what_changes_the_model():
+    base = identification_hash(uh60_single_rotor(), FlightCondition(), "single_rotor_3state", TINY, ct=CT)[0]
+    assert base == identification_hash(uh60_single_rotor(), FlightCondition(), SingleRotor3State(), TINY, ct=CT)[0]
+    other = IdentificationSettings(wake=TINY.wake, sweep_s=21.0, w_min=1.2, fit_range=(1.2, 20.0))
+    assert base != identification_hash(uh60_single_rotor(), FlightCondition(), "single_rotor_3state", other, ct=CT)[0]
+    assert base != identification_hash(uh60_single_rotor(), FlightCondition(), "single_rotor_3state", TINY,
+                                       ct=0.0062)[0]
+
+
+def test_pipeline_refuses_what_it_cannot_identify():
+    # flap-rate inputs need their own excitation: refused before any wake run
+    with pytest.raises(PipelineError, match="independent excitation"):
+        identify_inflow(coaxial_compound(), None, Coaxial12State(), ct=0.0096, cache_dir=None, progress=False)
+    with pytest.raises(PipelineError, match="rotors"):
+        identify_inflow(uh60_single_rotor(), None, Coaxial6State(), ct=CT, cache_dir=None, progress=False)
+    with pytest.raises(PipelineError, match="ct"):
+        identify_inflow(uh60_single_rotor(), None, SingleRotor3State(), cache_dir=None, progress=False)
+    with pytest.raises(ValueError, match="fit_range"):
+        IdentificationSettings(fit_range=(0.1, 25.0))
+    with pytest.raises(ValueError, match="unknown inflow structure"):
+        identify_inflow(uh60_single_rotor(), None, "five_state", ct=CT)
