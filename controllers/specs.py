@@ -205,7 +205,7 @@ def _is_stable(design):
     return float(np.max(design.closed_loop_poles().real)) <= 0.0
 
 
-def evaluate_specs(design, specs=None) -> pd.DataFrame:
+def evaluate_specs(design, specs=None, stop_at_first_unmet=False) -> pd.DataFrame:
     """Evaluate every spec on ``design``: one row per spec.
 
     Parameters
@@ -213,6 +213,10 @@ def evaluate_specs(design, specs=None) -> pd.DataFrame:
     design : EMFDesign
     specs : list of Spec, optional
         Default :func:`default_specs`.
+    stop_at_first_unmet : bool
+        Return after the first unmet hard/soft spec (a search screening many
+        candidates needs only to know that one fails); the table then has
+        fewer rows.
 
     Returns
     -------
@@ -255,4 +259,6 @@ def evaluate_specs(design, specs=None) -> pd.DataFrame:
                      "value": r["value"], "units": s.units, "level": r["level"],
                      "margin": r["margin"], "met": met, "status": status,
                      "source": s.source, "phase_delay": r.get("phase_delay", np.nan)})
+        if stop_at_first_unmet and not met:
+            break
     return pd.DataFrame(rows)
