@@ -46,7 +46,6 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
-import casadi as ca
 import control
 import numpy as np
 import pandas as pd
@@ -55,6 +54,7 @@ from tqdm.auto import tqdm
 
 from . import metrics as m
 from .emf import EMFDesign, PIDGains
+from .nlp import _Problem, _gain_scale, _gains, _loop_factor  # noqa: F401  (re-exported for search)
 from .specs import default_specs, evaluate_specs
 
 __all__ = ["DMOSettings", "OptimizationResult", "DMOResult", "VerificationError", "InfeasibleDesignError",
@@ -121,9 +121,9 @@ class DMOSettings:
     growth: float = 1.2
     tolerance: float = 0.005
     max_steps: int = 20
-    n_starts: int = 2
+    n_starts: int = 1
     seed: int = 0
-    polish_evaluations: int = 40
+    polish_evaluations: int = 25
     gain_upper: float = 50.0
     backoff: float = 0.01
     verify_tolerance_db: float = 0.5   #: optimiser vs python-control GM agreement
@@ -131,9 +131,9 @@ class DMOSettings:
     actuator_weight: float = 0.1
     #: the "gain below -GM past -180 deg" constraint applies above these fractions
     #: of the crossover boundary (below, the integrator's -180 deg region is allowed)
-    phase_constraint_from: tuple = (0.5, 0.2)
+    phase_constraint_from: tuple = (0.5, 0.2, 0.1)
     ipopt: dict = field(default_factory=lambda: {"ipopt.print_level": 0, "print_time": False,
-                                                 "ipopt.max_iter": 60, "ipopt.tol": 1e-7,
+                                                 "ipopt.max_iter": 40, "ipopt.tol": 1e-7,
                                                  "ipopt.hessian_approximation": "limited-memory",
                                                  "ipopt.mu_strategy": "adaptive",
                                                  "ipopt.acceptable_tol": 1e-5, "ipopt.acceptable_iter": 5,
@@ -221,128 +221,13 @@ class DMOResult:
         return fig
 
 
-def _loop_factor(design, omega, index=0):
-    s = 1j * omega
-    q = design._g(s) * design._sensor(s)
-    bad = ~np.isfinite(q)
-    if bad.any():
-        k = int(np.flatnonzero(bad)[0])
-        raise m.NonFiniteResponseError(
-            f"plant {index} ({design.plant.name or 'unnamed'}): actuator x plant x sensor is {q[k]} at "
-            f"omega = {omega[k]:.6g} rad/s", float(omega[k]))
-    return q
-
-
-def _gain_scale(designs, crossover_min):
-    """K_phi [stick/rad] that puts |K_phi/w Q| = 1 at the crossover boundary (mean over plants)."""
-    w = np.array([crossover_min])
-    mags = [abs(_loop_factor(d, w, i)[0]) for i, d in enumerate(designs)]
-    return float(crossover_min / np.exp(np.mean(np.log(mags))))
-
-
-def _gains(x, scale, crossover_min, tie):
-    """Physical gains from scaled variables (works on numbers and CasADi symbols)."""
-    k_phi = x[0] * scale
-    k_i = k_phi * crossover_min / 5.0 if tie else x[1] * scale * crossover_min
-    k_p = x[1 if tie else 2] * scale / crossover_min
-    return k_phi, k_i, k_p
-
-
-class _Problem:
-    """The smooth NLP, built once per DMO: boundaries enter as parameters.
-
-    Variables: scaled gains and a slack (exact penalty: the problem is always
-    feasible, slack 0 means every smooth constraint holds).  Parameters per
-    plant: the scale, the boundaries, 0/1 masks selecting the grid points of
-    the DRB, phase and crossover constraints, and the loop phase branch.
-    """
-
-    _PENALTY = 1e3
-
-    def __init__(self, designs, settings):
-        self.settings = settings
-        self.designs = designs
-        w = settings.omega
-        n = w.size
-        bo = settings.backoff
-        self.nvar = nvar = 2 if settings.tie_integral else 3
-        self.q = [_loop_factor(d, w, k) for k, d in enumerate(designs)]
-        x = ca.SX.sym("x", nvar)
-        slack = ca.SX.sym("slack")
-        scale, wc = ca.SX.sym("scale"), ca.SX.sym("wc")
-        mask_hi, mask_low = ca.SX.sym("mask_hi", n), ca.SX.sym("mask_low", n)
-        e_kc, e_kx = ca.SX.sym("e_kc", n), ca.SX.sym("e_kx", n)
-        phases = [ca.SX.sym(f"phase_q{k}", n) for k in range(len(designs))]
-        params = ca.vertcat(scale, wc, mask_hi, mask_low, e_kc, e_kx, *phases)
-        k_phi, k_i, k_p = _gains(x, scale, wc, settings.tie_integral)
-        dm = lambda a: ca.DM(np.asarray(a, float).reshape(-1, 1))
-        # CasADi column vectors (numpy arrays times SX scalars would build one
-        # scalar expression per grid point)
-        cr = k_p - k_i * dm(1.0 / w ** 2)
-        ci = -k_phi * dm(1.0 / w)
-        cons, objective = [], 0.0
-        for q, phase_q in zip(self.q, phases):
-            qr, qi = dm(q.real), dm(q.imag)
-            lr = cr * qr - ci * qi
-            li = cr * qi + ci * qr
-            mag2 = lr ** 2 + li ** 2
-            dist2 = (1 + lr) ** 2 + li ** 2
-            ang = ca.atan2(-li, -lr)
-            gdb = 10 * ca.log10(mag2 + 1e-12)
-            ellipse = ((ang / np.radians(settings.pm_deg * (1 + bo))) ** 2
-                       + (gdb / (settings.gm_db * (1 + bo))) ** 2)
-            # unwrapped loop phase: Im C = -K_phi/w < 0, so atan2(Im C, Re C) is
-            # continuous in (-pi, 0) and adds smoothly to the unwrapped phase of Q
-            beyond = 1.0 / (1.0 + ca.exp((phase_q + ca.atan2(ci, cr) + np.pi) / np.radians(3.0)))
-            cons.append(ellipse + slack - 1.0)
-            cons.append(dist2 + slack - 10 ** (-settings.drp_db * (1 - bo) / 10))
-            cons.append(slack - mask_hi * (gdb + settings.gm_db) * beyond)
-            cons.append(mask_low * (dist2 - 2.0 * (1 + bo)) + slack)
-            cons.append(ca.dot(e_kc, mag2) + slack - 1.0)
-            act = ca.sum1((cr ** 2 + ci ** 2) * dm(w ** 2 * np.gradient(w)) / dist2) / np.pi
-            objective = objective + ca.dot(e_kx, mag2) + settings.actuator_weight * act / scale ** 2
-        g = ca.vertcat(*cons)
-        self.solver = ca.nlpsol("dmo", "ipopt", {"x": ca.vertcat(x, slack), "p": params,
-                                                  "f": objective + self._PENALTY * slack, "g": g},
-                                settings.ipopt)
-        self.ng = g.shape[0]
-
-    def parameters(self, crossover_min, drb_min, phase_from, scale):
-        w = self.settings.omega
-        bo = self.settings.backoff
-        onehot = lambda k: np.eye(1, w.size, min(k, w.size - 1)).ravel()
-        phases = []
-        k_anchor = min(int(np.searchsorted(w, crossover_min)), w.size - 1)
-        for q in self.q:
-            # branch anchored at the crossover boundary, where any design meeting the
-            # phase margin has |phase Q| < 180 deg (not at the lowest frequency, where a
-            # free aircraft's near-cancelling pole/zero pairs give an arbitrary branch)
-            ph = np.unwrap(np.angle(q))
-            ph -= 2 * np.pi * np.round((ph[k_anchor] - np.angle(q[k_anchor])) / (2 * np.pi))
-            phases.append(ph)
-        return np.concatenate([[scale, crossover_min], (w >= phase_from * crossover_min).astype(float),
-                               (w <= drb_min * (1 + bo)).astype(float),
-                               onehot(int(np.searchsorted(w, crossover_min * (1 + bo)))),
-                               onehot(int(np.searchsorted(w, 1.5 * crossover_min))), *phases])
-
-    def solve(self, x0, crossover_min, drb_min, phase_from, scale):
-        """Returns (scaled gains, slack, IPOPT return status)."""
-        lbx = np.zeros(self.nvar + 1)
-        ubx = np.r_[np.full(self.nvar, self.settings.gain_upper), np.inf]
-        z0 = np.r_[np.clip(x0, 0.0, self.settings.gain_upper), 1.0]
-        sol = self.solver(x0=z0, p=self.parameters(crossover_min, drb_min, phase_from, scale), lbx=lbx,
-                          ubx=ubx, lbg=np.zeros(self.ng), ubg=np.full(self.ng, np.inf))
-        status = self.solver.stats()["return_status"]
-        z = np.clip(np.asarray(sol["x"], float).ravel(), lbx, ubx)   # IPOPT relaxes bounds by ~1e-8
-        return z[:-1], float(z[-1]), status
-
-
 def design_margins(designs, specs, labels=None, exclude=("CrsMnG2",), stop_at_first_unmet=False):
     """Spec table of one gain set over several designs, and its summary.
 
     Returns ``(table, unmet, min_margin, limiting_spec)``: the stacked
     :func:`evaluate_specs` tables (column ``plant``), the unmet hard/soft spec
-    names (``"spec @ plant"`` when several), the smallest CONDUIT normalised
+    names (``"spec @ plant"`` when several; specs not applicable on an unstable
+    loop are left out, EigLcG1 names the instability), the smallest CONDUIT normalised
     design margin over every non-objective spec and plant except ``exclude``
     (the crossover boundary the DMO drives its design onto), and the spec that has it.
     """
@@ -355,7 +240,9 @@ def design_margins(designs, specs, labels=None, exclude=("CrsMnG2",), stop_at_fi
             break
     table = pd.concat(tables, ignore_index=True)
     hard_soft = table[table.kind != "objective"]
-    bad = hard_soft[~hard_soft.met]
+    # specs read "n/a" on an unstable loop are not named: EigLcG1 is, and it alone
+    # already makes the design infeasible
+    bad = hard_soft[~hard_soft.met & (hard_soft.status == "not met")]
     unmet = list(dict.fromkeys(bad.spec if len(designs) == 1 else bad.spec + " @ " + bad.plant))
     pool = hard_soft[~hard_soft.spec.isin(exclude)]
     pool = pool if len(pool) else hard_soft
@@ -454,8 +341,8 @@ def optimize(design, crossover_min, drb_min, specs=None, settings=None, x0=None,
     statuses, candidates, solved = [], [], 0
     for n_start, start in enumerate(starts):
         # the looser phase constraints (low-frequency modes of a free aircraft)
-        # are tried from the first two starts only: each solve costs ~0.5-3 s
-        for phase_from in (fractions if n_start < 2 else fractions[:1]):
+        # are tried from the first start only: each solve costs ~0.2-1 s
+        for phase_from in (fractions if n_start < 1 else fractions[:1]):
             x1, slack, status = problem.solve(start, crossover_min, drb_min, phase_from, scale)
             statuses.append(status)
             if status not in _IPOPT_OK + _IPOPT_UNCONVERGED:
@@ -607,8 +494,8 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
         return lo, hi, best, upper
 
     lo, hi, best, upper = raise_boundary("crossover+DRB", lambda t: (t, t), best, upper)
-    if hi is not None and upper is not None and any(u.startswith("DrbRoH1") for u in upper.unmet):
-        # DRB stopped the joint raise: raise the crossover alone, DRB held
+    if hi is not None and upper is not None and upper.unmet and all(u.startswith("DrbRoH1") for u in upper.unmet):
+        # DRB alone stopped the joint raise: raise the crossover alone, DRB held
         base = lo
         lo2, hi2, best, upper = raise_boundary("crossover", lambda t: (base * t, base), best, upper)
         hi = None if hi2 is None else lo * hi2

@@ -30,11 +30,10 @@ def _short(label):
 
 
 def _title(ax, spec):
-    text = textwrap.fill(f"{spec.name} ({spec.kind}): {spec.description}", 44)
-    ax.set_title(text, fontsize=7, loc="left")
+    text = textwrap.fill(f"{spec.name} ({spec.kind}): {spec.description}", 48)
     if spec.source:
-        ax.text(0.0, -0.42, textwrap.fill("source: " + spec.source, 58), transform=ax.transAxes,
-                fontsize=6, color="0.3", va="top")
+        text += "\n" + textwrap.fill("source: " + spec.source, 56)
+    ax.set_title(text, fontsize=6.5, loc="left")
 
 
 def _scalar_panel(ax, spec, results, labels, colors):
@@ -55,7 +54,9 @@ def _scalar_panel(ax, spec, results, labels, colors):
     for k, (v, r) in enumerate(zip(vals, results)):
         y = (k + 1) / (n + 1)
         if np.isnan(v):
-            ax.text(0.5, y, f"{_short(labels[k])}: n/a ({r.get('status', 'undefined')})", transform=ax.transAxes,
+            status = r.get("status", "")
+            status = status if str(status).startswith("n/a") else "n/a: undefined"
+            ax.text(0.5, y, f"{_short(labels[k])}: {status}", transform=ax.transAxes,
                     fontsize=6, ha="center", va="center", color=colors[k])
             continue
         shown = float(np.clip(v, lo, hi))
@@ -114,9 +115,9 @@ def _nichols_panel(ax, designs, labels, colors, gm_db=6.0, pm_deg=45.0):
     ax.set_xlabel("phase [deg]", fontsize=6, labelpad=1)
     ax.set_ylabel("gain [dB]", fontsize=6)
     ax.set_title(textwrap.fill("Nichols chart, loop broken at mixer input: exclusion ellipse "
-                               f"(±{pm_deg:g} deg, ±{gm_db:g} dB about -180 deg, 0 dB)", 44), fontsize=7, loc="left")
-    ax.text(0.0, -0.42, "source: CONDUIT NicMgG1 (elliptical approximation); MIL-DTL-9490E GM/PM",
-            transform=ax.transAxes, fontsize=6, color="0.3", va="top")
+                               f"(±{pm_deg:g} deg, ±{gm_db:g} dB about -180 deg, 0 dB)", 48) + "\n"
+                 + textwrap.fill("source: CONDUIT NicMgG1 (elliptical approximation); MIL-DTL-9490E GM/PM", 56),
+                 fontsize=6.5, loc="left")
 
 
 def hq_window(designs, specs, labels=None, fig=None, ncols=4, nichols=True):

@@ -40,6 +40,7 @@ PLANTS = {
     "case A (Dynamic Climb)": lambda: _aircraft(DynamicClimb()),
     "case C (identified 6-state, Eq. 5.3)": lambda: _aircraft(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE)),
 }
+SLOW = {"case A (Dynamic Climb)", "case C (identified 6-state, Eq. 5.3)"}
 
 
 def _check_met_and_python_control(design, specs):
@@ -53,11 +54,13 @@ def _check_met_and_python_control(design, specs):
     assert np.all(design.gains.as_array() >= 0)       # bounds honoured: no negative gain
 
 
-@pytest.mark.parametrize("name", list(PLANTS))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW else n for n in PLANTS])
 def test_dmo_reaches_the_best_crossover_of_an_independent_search(name):
     design = PLANTS[name]()
     result = dmo(design, progress=False, crossover_start=START[0], drb_start=START[1])
-    search = search_designs(design, default_specs(*START), n_grid=4, zoom_rounds=2)
+    # 15 gains on each of 5 x 5 rays + 2 zoom rounds (~380 spec evaluations); a coarser
+    # one (4 x 4 rays) missed the narrow feasible K_p/K_phi band of the hand plant
+    search = search_designs(design, default_specs(*START), zoom_rounds=2)
     assert search.feasible
     final = result.history[result.history.feasible].iloc[-1]
     _check_met_and_python_control(result.design, default_specs(final.crossover_min, final.drb_min))
