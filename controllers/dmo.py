@@ -131,7 +131,7 @@ class DMOSettings:
     actuator_weight: float = 0.1
     #: the "gain below -GM past -180 deg" constraint applies above these fractions
     #: of the crossover boundary (below, the integrator's -180 deg region is allowed)
-    phase_constraint_from: tuple = (0.5, 0.2, 0.1)
+    phase_constraint_from: tuple = (0.5, 0.2)
     ipopt: dict = field(default_factory=lambda: {"ipopt.print_level": 0, "print_time": False,
                                                  "ipopt.max_iter": 40, "ipopt.tol": 1e-7,
                                                  "ipopt.hessian_approximation": "limited-memory",

@@ -117,7 +117,7 @@ def test_dmo_does_not_depend_on_the_phase_branch_at_the_lowest_grid_frequency():
     # the +0.02 rad/s zero needs integral action to hold the slow mode: with all gains
     # free the smooth NLP (blind below the phase-constraint band) drops K_Iphi to 0 and
     # the loop is unstable; the dissertation's tie K_Iphi = K_phi w_c/5 keeps it
-    settings = DMOSettings(tie_integral=True)
+    settings = DMOSettings(tie_integral=True, phase_constraint_from=(0.5, 0.2, 0.1))
     settings.ipopt = {**settings.ipopt, "ipopt.max_iter": 300}    # this start needs ~100-200 iterations
     result = optimize(design, 1.5, 0.9, settings=settings)
     assert result.feasible, result.unmet
