@@ -34,9 +34,10 @@ def _aircraft(inflow):
 
 PLANTS = {
     "hand: 11.9 rad/s flap, zeta 0.175": lambda: _hand(hover_roll_plant()),
-    "hand: 9 rad/s flap, zeta 0.3, 20 ms": lambda: _hand(hover_roll_plant(gain=3.0, roll_damping=2.5,
-                                                                          flap_frequency=9.0, flap_damping=0.3,
-                                                                          delay=0.02)),
+    # (with 9 rad/s and a 20 ms delay no gain set meets BnwAtH1's phase delay: the DMO raises)
+    "hand: 10 rad/s flap, zeta 0.3, 5 ms": lambda: _hand(hover_roll_plant(gain=3.0, roll_damping=2.5,
+                                                                         flap_frequency=10.0, flap_damping=0.3,
+                                                                         delay=0.005)),
     "case A (Dynamic Climb)": lambda: _aircraft(DynamicClimb()),
     "case C (identified 6-state, Eq. 5.3)": lambda: _aircraft(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE)),
 }
