@@ -244,7 +244,7 @@ def design_margins(designs, specs, labels=None, exclude=("CrsMnG2",), stop_at_fi
     # already makes the design infeasible
     bad = hard_soft[~hard_soft.met & (hard_soft.status == "not met")]
     unmet = list(dict.fromkeys(bad.spec if len(designs) == 1 else bad.spec + " @ " + bad.plant))
-    pool = hard_soft[~hard_soft.spec.isin(exclude)]
+    pool = hard_soft[~hard_soft.spec.isin(exclude) & ~hard_soft.status.str.startswith("n/a")]
     pool = pool if len(pool) else hard_soft
     k = pool.margin.astype(float).idxmin()
     limiting = table.loc[k, "spec"] + ("" if len(designs) == 1 else f" @ {table.loc[k, 'plant']}")
