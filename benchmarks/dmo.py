@@ -29,7 +29,7 @@ def _aircraft(inflow):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--n-grid", type=int, default=6, help="search grid points per gain")
+    parser.add_argument("--n-scale", type=int, default=15, help="search gains per ray")
     args = parser.parse_args(argv)
     cases = {"hand plant": EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.2), actuator=second_order_actuator())}
     if not args.quick:
@@ -48,7 +48,7 @@ def main(argv=None):
                "DMO crossover [rad/s]": result.crossover, "limiting": ", ".join(result.limiting),
                "target < 60 s": "met" if t_dmo < 60 else "NOT met"}
         if not isinstance(design, list):
-            search = search_designs(design, default_specs(1.5, 0.9), n_grid=args.n_grid, zoom_rounds=3)
+            search = search_designs(design, default_specs(1.5, 0.9), n_scale=args.n_scale, zoom_rounds=2)
             row.update({"search wall [s]": search.wall_time, "search points": len(search.points),
                         "search crossover [rad/s]": search.crossover,
                         "DMO / search": result.crossover / search.crossover})
