@@ -42,7 +42,8 @@ def main(argv=None):
     rows = []
     for name, design in cases.items():
         t0 = time.perf_counter()
-        result = dmo(design, progress=False)
+        labels = ["DC", "6-state", "12-state"] if isinstance(design, list) else None
+        result = dmo(design, progress=False, labels=labels)
         t_dmo = time.perf_counter() - t0
         row = {"case": name, "DMO wall [s]": t_dmo, "DMO steps": len(result.history),
                "DMO crossover [rad/s]": result.crossover, "limiting": ", ".join(result.limiting),
