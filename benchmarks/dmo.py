@@ -1,34 +1,62 @@
-"""Benchmark: a full design-margin optimisation on the hand-written hover roll plant.
+"""Benchmark: DMO wall time per case and the independent search's time for the same answer.
 
-Prints the wall time (target < 60 s on 2 cores), the DMO history, the final
-gains, crossover, DRB and the limiting spec.
+Cases: the hand-written hover roll plant, the main job's case A (Dynamic Climb),
+case C (identified 6-state, Eq. 5.3) and the robust case D (DC + 6-state +
+published 12-state). For each: DMO wall time (target < 60 s on 2 cores), its
+final crossover and limiting spec; for A/C and the hand plant also the dense
+search (controllers.search_designs) with its wall time and best crossover.
+Run: ``python benchmarks/dmo.py`` (``--quick``: hand plant only).
 """
+import argparse
 import time
 
 import pandas as pd
 
-from controllers import EMFDesign, PIDGains, default_specs, dmo, evaluate_specs, hover_roll_plant, \
-    second_order_actuator
+from aircraft import coaxial_compound
+from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, trim
+from aircraft.inflow import DynamicClimb, IdentifiedInflow
+from aircraft.inflow.published import COAXIAL_HOVER_12STATE, COAXIAL_HOVER_6STATE
+from controllers import (CommandModel, EMFDesign, PIDGains, default_specs, dmo, hover_roll_plant,
+                         roll_design_plant, search_designs, second_order_actuator)
 
 
-def main():
-    design = EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.2), actuator=second_order_actuator())
-    t0 = time.perf_counter()
-    result = dmo(design, progress=False)
-    wall = time.perf_counter() - t0
-    pd.set_option("display.width", 160)
-    print("== DMO benchmark: hover roll plant with a regressive flap mode (11.9 rad/s, zeta 0.175) ==")
-    print(result.history.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
-    g = result.design.gains
-    last = result.history[result.history.feasible].iloc[-1]
-    table = evaluate_specs(result.design, default_specs(last.crossover_min, last.drb_min)).set_index("spec")
-    print(f"final gains: K_phi = {g.K_phi:.4g}, K_Iphi = {g.K_Iphi:.4g}, K_p = {g.K_p:.4g}; "
-          f"tau_eq = {result.design.equivalent_delay:.4g} s")
-    print(f"crossover {table.loc['CrsMnG2', 'value']:.3f} rad/s, DRB {table.loc['DrbRoH1', 'value']:.3f} rad/s, "
-          f"DRP {table.loc['DrpAvH1', 'value']:.2f} dB, GM {table.loc['StbMgG1.GM', 'value']:.2f} dB, "
-          f"PM {table.loc['StbMgG1.PM', 'value']:.1f} deg")
-    print(result.message)
-    print(f"DMO wall time: {wall:.2f} s (target < 60 s -> {'met' if wall < 60 else 'NOT met'})")
+def _aircraft(inflow):
+    sys = linearize(trim(Helicopter(coaxial_compound(), inflow, HelicopterSettings(n_span=8, n_average=1))))
+    return EMFDesign(roll_design_plant(sys), PIDGains(0.3, 0.1, 0.05), CommandModel(4.0, 0.7, 0.05),
+                     second_order_actuator(35.0, 0.7), sensor_delay=0.01)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--n-scale", type=int, default=15, help="search gains per ray")
+    args = parser.parse_args(argv)
+    cases = {"hand plant": EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.2), actuator=second_order_actuator())}
+    if not args.quick:
+        cases["A (Dynamic Climb)"] = _aircraft(DynamicClimb())
+        cases["C (6-state Eq. 5.3)"] = _aircraft(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE))
+        twelve = _aircraft(IdentifiedInflow.from_published(COAXIAL_HOVER_12STATE))
+        c = cases["C (6-state Eq. 5.3)"]
+        cases["D (robust: DC, 6-state, 12-state)"] = [c.with_plant(cases["A (Dynamic Climb)"].plant), c,
+                                                     c.with_plant(twelve.plant)]
+    rows = []
+    for name, design in cases.items():
+        t0 = time.perf_counter()
+        labels = ["DC", "6-state", "12-state"] if isinstance(design, list) else None
+        result = dmo(design, progress=False, labels=labels)
+        t_dmo = time.perf_counter() - t0
+        row = {"case": name, "DMO wall [s]": t_dmo, "DMO steps": len(result.history),
+               "DMO crossover [rad/s]": result.crossover, "limiting": ", ".join(result.limiting),
+               "target < 60 s": "met" if t_dmo < 60 else "NOT met"}
+        if not isinstance(design, list):
+            search = search_designs(design, default_specs(1.5, 0.9), n_scale=args.n_scale, zoom_rounds=2)
+            row.update({"search wall [s]": search.wall_time, "search points": len(search.points),
+                        "search crossover [rad/s]": search.crossover,
+                        "DMO / search": result.crossover / search.crossover})
+        rows.append(row)
+        print(f"{name}: DMO {t_dmo:.1f} s -> {result.crossover:.3f} rad/s ({result.message})", flush=True)
+    pd.set_option("display.width", 220)
+    print(pd.DataFrame(rows).to_string(index=False, float_format=lambda v: f"{v:.4g}"))
 
 
 if __name__ == "__main__":

@@ -8,27 +8,36 @@
             │                                bandwidth/phase delay, damping, RMS)
             ├─ control.interconnect state space (Padé) ─► poles, time responses
             └─ specs (Table 7.3) ─► evaluate_specs ─► hq_window
-    dmo(design): CasADi/IPOPT feasibility + objective phases, boundaries raised until
-                 infeasible, every result re-checked with python-control
+    dmo(design or [designs]): CasADi/IPOPT, boundaries raised by bisection to a
+                 tolerance, several starts per step, every result re-checked with
+                 python-control; search_designs: independent dense search
+    roll_design_plant(linearize(trim(heli))): the Eq. 7.21 roll plant
 """
-from .plants import DelayedLTI, first_order_actuator, hover_roll_plant, second_order_actuator
+from .plants import (HOVER_ROLL_CONSTRAINTS, DelayedLTI, first_order_actuator, hover_roll_plant,
+                     roll_design_plant, second_order_actuator)
 from .metrics import (attitude_bandwidth, crossover_frequency, damping_in_band,
                       disturbance_rejection_bandwidth, disturbance_rejection_peak,
-                      gain_phase_margins, nichols_margin, rms_response)
+                      gain_phase_margins, nichols_margin, rms_response, NonFiniteResponseError)
 from .emf import (CommandModel, EMFDesign, FrequencyFunction, PIDGains, fit_equivalent_delay,
                   fit_inverse_plant)
-from .specs import BandwidthSpec, Spec, default_specs, evaluate_specs, spec_by_name
-from .dmo import DMOResult, DMOSettings, OptimizationResult, VerificationError, dmo, optimize
+from .specs import (BandwidthSpec, Spec, SpecEvaluationError, default_specs, evaluate_specs,
+                    spec_by_name)
+from .dmo import (DMOResult, DMOSettings, InfeasibleDesignError, OptimizationResult, SolverError,
+                  VerificationError, design_margins, dmo, optimize)
+from .search import SearchResult, search_designs
 from .hqwindow import hq_window
 
 __all__ = [
-    "DelayedLTI", "first_order_actuator", "hover_roll_plant", "second_order_actuator",
+    "HOVER_ROLL_CONSTRAINTS", "DelayedLTI", "first_order_actuator", "hover_roll_plant",
+    "roll_design_plant", "second_order_actuator",
     "attitude_bandwidth", "crossover_frequency", "damping_in_band",
     "disturbance_rejection_bandwidth", "disturbance_rejection_peak", "gain_phase_margins",
-    "nichols_margin", "rms_response",
+    "nichols_margin", "rms_response", "NonFiniteResponseError",
     "CommandModel", "EMFDesign", "FrequencyFunction", "PIDGains", "fit_equivalent_delay",
     "fit_inverse_plant",
-    "BandwidthSpec", "Spec", "default_specs", "evaluate_specs", "spec_by_name",
-    "DMOResult", "DMOSettings", "OptimizationResult", "VerificationError", "dmo", "optimize",
+    "BandwidthSpec", "Spec", "SpecEvaluationError", "default_specs", "evaluate_specs", "spec_by_name",
+    "DMOResult", "DMOSettings", "InfeasibleDesignError", "OptimizationResult", "SolverError",
+    "VerificationError", "design_margins", "dmo", "optimize",
+    "SearchResult", "search_designs",
     "hq_window",
 ]

@@ -23,7 +23,7 @@ import control
 import numpy as np
 from scipy.optimize import least_squares
 
-from .plants import DelayedLTI
+from .plants import DelayedLTI, _check_siso
 
 __all__ = ["CommandModel", "PIDGains", "FrequencyFunction", "EMFDesign",
            "fit_inverse_plant", "fit_equivalent_delay"]
@@ -40,6 +40,12 @@ class CommandModel:
     damping: float = 0.7
     gain: float = 0.05
 
+    def __post_init__(self):
+        for name in ("frequency", "damping", "gain"):
+            v = getattr(self, name)
+            if not np.isscalar(v) or isinstance(v, complex) or not np.isfinite(v) or v <= 0:
+                raise ValueError(f"CommandModel.{name} must be a finite real number > 0, got {v!r}")
+
     def tf(self):
         w, z = self.frequency, self.damping
         return control.tf([self.gain * w ** 2], [1, 2 * z * w, w ** 2])
@@ -52,6 +58,13 @@ class PIDGains:
     K_phi: float
     K_Iphi: float
     K_p: float
+
+    def __post_init__(self):
+        for name in ("K_phi", "K_Iphi", "K_p"):
+            v = getattr(self, name)
+            if isinstance(v, (complex, np.complexfloating)) or not np.isscalar(v) or not np.isfinite(v):
+                raise ValueError(f"PID gain {name} must be a finite real number, got {v!r}")
+            object.__setattr__(self, name, float(v))
 
     def as_array(self):
         return np.array([self.K_phi, self.K_Iphi, self.K_p])
@@ -76,7 +89,7 @@ def _as_delayed(sys):
         return sys
     if isinstance(sys, control.LTI):
         return DelayedLTI(sys, 0.0)
-    raise TypeError(f"expected a control LTI or DelayedLTI, got {type(sys).__name__}")
+    raise TypeError(f"the plant must be a control LTI or DelayedLTI, got {type(sys).__name__}")
 
 
 def _eval(sys, s):
@@ -162,11 +175,17 @@ class EMFDesign:
     def __init__(self, plant, gains, command_model=CommandModel(), actuator=None, sensor_delay=0.01,
                  inverse_plant=None, equivalent_delay=None, fit_range=(1.0, 12.0)):
         self.plant = _as_delayed(plant)
+        if not isinstance(gains, PIDGains):
+            raise TypeError(f"gains must be PIDGains, got {type(gains).__name__}")
         self.gains = gains
         self.command_model = command_model
         self.actuator = actuator if actuator is not None else control.tf([1.0], [1.0])
-        if sensor_delay < 0:
-            raise ValueError("sensor_delay must be >= 0 s")
+        if not isinstance(self.actuator, control.LTI):
+            raise TypeError(f"actuator must be a control LTI, got {type(self.actuator).__name__}")
+        _check_siso(self.actuator, "the actuator")
+        if not np.isfinite(sensor_delay) or sensor_delay < 0:
+            raise ValueError(f"sensor_delay must be >= 0 s and finite, got {sensor_delay}")
+        self._cache = {}
         self.sensor_delay = float(sensor_delay)
         self.fit_range = fit_range
         bare = FrequencyFunction(lambda s: self._g(s) * self._sensor(s), "bare airframe + actuator + sensor")
@@ -195,9 +214,13 @@ class EMFDesign:
 
     def with_gains(self, gains):
         """Copy with other feedback gains (same inverse plant and tau_eq)."""
+        if not isinstance(gains, PIDGains):
+            raise TypeError(f"gains must be PIDGains, got {type(gains).__name__}")
         new = object.__new__(EMFDesign)
         new.__dict__.update(self.__dict__)
         new.gains = gains
+        # gain-independent poles (command model, feed-forward, sync) are shared
+        new._cache = {k: v for k, v in self._cache.items() if k[0] == "fixed"}
         return new
 
     def with_plant(self, plant):
@@ -206,6 +229,7 @@ class EMFDesign:
         new = object.__new__(EMFDesign)
         new.__dict__.update(self.__dict__)
         new.plant = _as_delayed(plant)
+        new._cache = {k: v for k, v in self._cache.items() if k[0] == "fixed"}
         return new
 
     # -- exact frequency responses --------------------------------------------
@@ -294,13 +318,41 @@ class EMFDesign:
     def broken_loop_statespace(self, pade_order=3):
         """L = C G S as a StateSpace (Padé delays), for python-control's margins."""
         k = self.gains
-        c = control.tf([k.K_p, k.K_phi, k.K_Iphi], [1.0, 0.0, 0.0])
+        # K_Iphi = 0: no integrator state (it would be an unobservable pole at 0)
+        c = (control.tf([k.K_p, k.K_phi, k.K_Iphi], [1.0, 0.0, 0.0]) if k.K_Iphi != 0
+             else control.tf([k.K_p, k.K_phi], [1.0, 0.0]))
         sensor = control.tf(*control.pade(self.sensor_delay, pade_order)) if self.sensor_delay > 0 else 1
         return control.series(self.plant.to_statespace(pade_order), control.ss(self.actuator),
                               control.ss(sensor), control.ss(c))
 
+    def _fixed_poles(self, pade_order):
+        """Poles of the gain-independent blocks of :meth:`closed_loop` [rad/s].
+
+        Command model, feed-forward s CM / P_hat, synchronisation delays, the
+        second sensor Padé (the interconnect senses p and phi through one Padé
+        each; the loop sees one of them) and the disturbance rate filter.
+        """
+        key = ("fixed", pade_order)
+        if key not in self._cache:
+            def pade(tau):
+                return control.tf(*control.pade(tau, pade_order)) if tau > 0 else control.tf([1.0], [1.0])
+            s = control.tf("s")
+            cm = self.command_model.tf()
+            blocks = [cm, control.minreal(s * cm / self.inverse_plant, verbose=False), pade(self.equivalent_delay),
+                      control.minreal(s * cm, verbose=False) * pade(self.equivalent_delay),
+                      pade(self.sensor_delay), control.tf([1.0, 0.0], [0.001, 1.0])]
+            self._cache[key] = np.concatenate([np.linalg.eigvals(control.ss(b).A) if control.ss(b).nstates
+                                               else np.zeros(0, complex) for b in blocks])
+        return self._cache[key]
+
     def closed_loop_poles(self, pade_order=3, cancel_radius=0.02, match_tol=0.25):
         """Poles of :meth:`closed_loop` [rad/s], less those the kinematics cancel.
+
+        Computed as the eigenvalues of the feedback loop ``feedback(L, 1)``
+        (:meth:`broken_loop_statespace`) together with the gain-independent
+        poles of the command model, feed-forward and synchronisation blocks:
+        the same spectrum as the full ``interconnect`` model (tested), at a
+        fraction of the cost.
 
         The interconnect integrates p to get phi. A hovering airframe's p/delta
         has zeros at (or, after numerical linearisation, within ~1e-3 rad/s of)
@@ -316,8 +368,15 @@ class EMFDesign:
         30-50 state loops of the identified-inflow aircraft (it can turn a
         +0.003 1/s cancelled mode into a spurious +1.8 1/s pole).
         """
-        poles = np.linalg.eigvals(self.closed_loop(pade_order).A)
-        plant_zeros = self.plant.to_statespace(pade_order).zeros()
+        key = ("poles", pade_order, cancel_radius, match_tol)
+        if key in self._cache:
+            return self._cache[key]
+        loop = control.feedback(self.broken_loop_statespace(pade_order), 1)
+        poles = np.concatenate([np.linalg.eigvals(loop.A), self._fixed_poles(pade_order)])
+        zkey = ("fixed", "plant zeros", pade_order)
+        if zkey not in self._cache or self._cache[zkey][0] is not self.plant:
+            self._cache[zkey] = (self.plant, self.plant.to_statespace(pade_order).zeros())
+        plant_zeros = self._cache[zkey][1]
         slow_zeros = plant_zeros[np.abs(plant_zeros) < 2 * cancel_radius]
         keep = np.ones(poles.size, bool)
         used = np.zeros(slow_zeros.size, bool)
@@ -329,7 +388,8 @@ class EMFDesign:
             j = int(np.argmin(gap))
             if gap[j] <= 0:
                 keep[i], used[j] = False, True
-        return poles[keep]
+        self._cache[key] = poles[keep]
+        return self._cache[key]
 
     def stick_impulse(self, duration=6.0, dt=0.01, width=0.25, amplitude=1.0):
         """Response to a lateral-stick pulse: TimeResponseData with named signals."""

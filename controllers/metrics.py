@@ -14,15 +14,52 @@ import control
 __all__ = ["frequency_response_of", "crossover_frequency", "gain_phase_margins",
            "nichols_margin", "disturbance_rejection_bandwidth", "disturbance_rejection_peak",
            "attitude_bandwidth", "damping_in_band", "rms_response", "open_loop_onset_point",
-           "DEFAULT_OMEGA"]
+           "DEFAULT_OMEGA", "NonFiniteResponseError", "BandwidthUndefinedError"]
 
 #: default evaluation grid [rad/s]
 DEFAULT_OMEGA = np.geomspace(0.01, 200.0, 4000)
 
 
+class NonFiniteResponseError(ValueError):
+    """A frequency response is NaN or inf at some frequency of the grid."""
+
+    def __init__(self, message, frequency=float("nan")):
+        super().__init__(message)
+        self.frequency = frequency
+
+
+class BandwidthUndefinedError(ValueError):
+    """The attitude bandwidth is undefined (the phase never reaches -180 deg on the grid)."""
+
+
+def _checked(omega, h, name=""):
+    bad = ~np.isfinite(h)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise NonFiniteResponseError(
+            f"{name or 'frequency response'} is {h[k]} at omega = {omega[k]:.6g} rad/s "
+            f"({int(bad.sum())} of {h.size} grid points non-finite)", float(omega[k]))
+    return omega, h
+
+
 def frequency_response_of(sys, omega=None):
-    """Complex response of ``sys`` at ``omega`` [rad/s]."""
+    """Complex response of ``sys`` at ``omega`` [rad/s].
+
+    Raises
+    ------
+    NonFiniteResponseError
+        If the response is NaN or inf anywhere on the grid (the first such
+        frequency is named): a metric read from it would be silently wrong.
+    """
     omega = DEFAULT_OMEGA if omega is None else np.asarray(omega, dtype=float)
+    if omega.ndim != 1 or not np.all(np.isfinite(omega)) or np.any(omega <= 0):
+        raise ValueError("omega must be a 1-D array of finite frequencies > 0 rad/s")
+    name = getattr(sys, "name", "") or ""
+    h = _frequency_response(sys, omega)
+    return _checked(*h, name)
+
+
+def _frequency_response(sys, omega):
     if callable(getattr(sys, "response", None)):
         # DelayedLTI / FrequencyFunction: exact delays (e^{-jw tau}), no Padé
         return omega, np.asarray(sys.response(omega), dtype=complex)
@@ -151,7 +188,7 @@ def attitude_bandwidth(sys, omega=None, response_type="attitude"):
     x180, d180 = _crossings(lw, phase, -180.0)
     x135, d135 = _crossings(lw, phase, -135.0)
     if not x180.size or not x135.size:
-        raise ValueError("the attitude response never reaches -180 deg on the frequency grid")
+        raise BandwidthUndefinedError("the attitude response never reaches -180 deg on the frequency grid")
     w180 = float(np.exp(x180[0]))
     wbw_phase = float(np.exp(x135[0]))
     gain180 = float(np.interp(x180[0], lw, mag))

@@ -35,7 +35,15 @@ import pandas as pd
 
 from . import metrics as m
 
-__all__ = ["Spec", "BandwidthSpec", "default_specs", "evaluate_specs", "spec_by_name"]
+__all__ = ["Spec", "BandwidthSpec", "SpecEvaluationError", "default_specs", "evaluate_specs",
+           "spec_by_name", "UNSTABLE_NOTE"]
+
+#: status of a frequency-domain spec on a closed loop that is not stable
+UNSTABLE_NOTE = "n/a: closed loop unstable"
+
+
+class SpecEvaluationError(ValueError):
+    """A spec could not be evaluated (non-finite response, bad value): names the spec."""
 
 
 @dataclass
@@ -55,6 +63,17 @@ class Spec:
     kind: str = "soft"
     units: str = ""
     source: str = ""
+    #: frequency-domain specs read "not applicable" (never met) on an unstable loop
+    needs_stable: bool = True
+
+    def __post_init__(self):
+        if self.direction not in ("min", "max"):
+            raise ValueError(f"spec {self.name!r}: direction must be 'min' or 'max', got {self.direction!r}")
+        if self.kind not in ("hard", "soft", "objective"):
+            raise ValueError(f"spec {self.name!r}: kind must be 'hard', 'soft' or 'objective', got {self.kind!r}")
+        if self.kind != "objective" and not (np.isfinite(self.level1) and np.isfinite(self.level2)):
+            raise ValueError(f"spec {self.name!r}: Level 1/2 boundaries must be finite, got "
+                             f"{self.level1}, {self.level2}")
 
     def value(self, design):
         return float(self.metric(design))
@@ -86,7 +105,7 @@ class BandwidthSpec(Spec):
     def evaluate(self, design):
         try:
             bw, tau = self.value(design)
-        except ValueError:
+        except m.BandwidthUndefinedError:
             return {"value": np.nan, "level": 3, "margin": -np.inf}
         m_bw = (bw - self.level1) / (self.level1 - self.level2)
         m_tau = (self.tau1 - tau) / (self.tau2 - self.tau1)
@@ -137,7 +156,7 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
         bw1, bw2, tau1, tau2 = 2.0, 1.0, 0.20, 0.30
     return [
         Spec("EigLcG1", "all eigenvalues in the left half plane", _max_real_pole, "max", 0.0, 0.0,
-             kind="hard", units="1/s", source="generic"),
+             kind="hard", units="1/s", source="generic", needs_stable=False),
         Spec("NicMgG1", "Nichols margin, loop broken at mixer input",
              lambda d: m.nichols_margin(d.broken_loop()), "min", 0.0, -0.25, kind="hard",
              source="CONDUIT NicMgG1 (elliptical approximation)"),
@@ -156,10 +175,10 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
              kind="soft", units="dB", source="Table 7.3; Tischler et al. 2017"),
         Spec("EigDpG1.hi", "damping ratio, 4-20 rad/s",
              lambda d: m.damping_in_band(d.closed_loop_poles(), 4.0, 20.0), "min", 0.1, 0.02,
-             kind="soft", source="Table 7.3"),
+             kind="soft", source="Table 7.3", needs_stable=False),
         Spec("EigDpG1.lo", "damping ratio, 0.5-4 rad/s",
              lambda d: m.damping_in_band(d.closed_loop_poles(), 0.5, 4.0), "min", 0.35, 0.15,
-             kind="soft", source="Table 7.3; ADS-33E-PRF"),
+             kind="soft", source="Table 7.3; ADS-33E-PRF", needs_stable=False),
         Spec("OlpOpG1", "open-loop onset point, pilot input (dB below the approximate boundary)",
              lambda d: _olop_margin(d, olop_stick, olop_rate), "min", 0.0, -6.0, kind="soft",
              units="dB", source="Duda 1997 OLOP criterion (approximate boundary)"),
@@ -175,24 +194,71 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
 
 
 def spec_by_name(specs, name):
+    """The spec called ``name`` in the list ``specs`` (KeyError naming the choices)."""
     for s in specs:
         if s.name == name:
             return s
-    raise KeyError(f"no spec named {name!r}")
+    raise KeyError(f"no spec named {name!r}; available: {[s.name for s in specs]}")
 
 
-def evaluate_specs(design, specs=None) -> pd.DataFrame:
+def _is_stable(design):
+    return float(np.max(design.closed_loop_poles().real)) <= 0.0
+
+
+def evaluate_specs(design, specs=None, stop_at_first_unmet=False) -> pd.DataFrame:
     """Evaluate every spec on ``design``: one row per spec.
 
-    Columns: spec, description, kind, value, units, level, margin, met
-    (hard/soft: Level 1 reached), source.
+    Parameters
+    ----------
+    design : EMFDesign
+    specs : list of Spec, optional
+        Default :func:`default_specs`.
+    stop_at_first_unmet : bool
+        Return after the first unmet hard/soft spec (a search screening many
+        candidates needs only to know that one fails); the table then has
+        fewer rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns: spec, description, kind, value, units, level, margin (CONDUIT's
+        normalised design margin: 0 on the Level 1 boundary, -1 on the Level 2/3
+        boundary, > 0 inside Level 1), met (hard/soft: Level 1 reached),
+        status, source, phase_delay.  On a closed loop that is not stable the
+        frequency-domain specs (``needs_stable``) are not evaluated: value NaN,
+        level 3, margin -inf, met False, status :data:`UNSTABLE_NOTE`.
+
+    Raises
+    ------
+    SpecEvaluationError
+        A response is NaN/inf at some frequency, or a spec returns NaN where a
+        number is required (the spec and the frequency are named).
     """
-    specs = default_specs() if specs is None else specs
+    specs = default_specs() if specs is None else list(specs)
+    for s in specs:
+        if not isinstance(s, Spec):
+            raise TypeError(f"specs must be Spec objects, got {type(s).__name__}")
+    try:
+        stable = _is_stable(design)
+    except np.linalg.LinAlgError as exc:
+        raise SpecEvaluationError(f"closed-loop poles could not be computed: {exc}") from exc
     rows = []
     for s in specs:
-        r = s.evaluate(design)
+        if s.needs_stable and not stable:
+            r = {"value": np.nan, "level": 3, "margin": -np.inf}
+            status = UNSTABLE_NOTE if s.kind != "objective" else UNSTABLE_NOTE
+            met = False if s.kind != "objective" else True
+        else:
+            try:
+                r = s.evaluate(design)
+            except m.NonFiniteResponseError as exc:
+                raise SpecEvaluationError(f"spec {s.name!r} ({s.description}): {exc}") from exc
+            met = bool(r["margin"] >= 0) if s.kind != "objective" else True
+            status = "objective" if s.kind == "objective" else ("met" if met else "not met")
         rows.append({"spec": s.name, "description": s.description, "kind": s.kind,
                      "value": r["value"], "units": s.units, "level": r["level"],
-                     "margin": r["margin"], "met": bool(r["margin"] >= 0) if s.kind != "objective" else True,
+                     "margin": r["margin"], "met": met, "status": status,
                      "source": s.source, "phase_delay": r.get("phase_delay", np.nan)})
+        if stop_at_first_unmet and not met:
+            break
     return pd.DataFrame(rows)

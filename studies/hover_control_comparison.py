@@ -1,16 +1,22 @@
 """Main job: impact of inflow modelling on hover control design (dissertation §7.5).
 
-Three cases, same explicit-model-following structure (Fig. 7.12), same command
+Four cases, same explicit-model-following structure (Fig. 7.12), same command
 model, actuator and sensor:
 
 * (A) design optimised (DMO) on the Dynamic-Climb (DC) aircraft, applied to it;
 * (B) the same design (gains, inverse plant, tau_eq) applied to the aircraft with
   the wake-identified inflow model;
-* (C) design optimised on the wake-identified aircraft, applied to it.
+* (C) design optimised on the wake-identified aircraft, applied to it;
+* (D) one robust design (CONDUIT multi-case) meeting every spec on the
+  Dynamic-Climb, the identified 6-state (Eq. 5.3) and the published 12-state
+  (Eqs. 6.2-6.3) aircraft at once, with case C's inverse plant and tau_eq.
+  Add a plant to ``robust_plants`` in :func:`main` to add it to case D.
 
 Each aircraft is our coaxial model (:mod:`aircraft.helicopter`) trimmed in hover
 and linearised; the roll-axis plant is the coupling numerator
-p/delta_lat | q->delta_lon, r->delta_ped, w->delta_col (Eq. 7.21).
+p/delta_lat | q->delta_lon, r->delta_ped, w->delta_col (Eq. 7.21), built by
+:func:`controllers.roll_design_plant`. All three PID gains are free (no K_Iphi
+tie), bounded below by 0; the DMO raises its boundaries by bisection to 0.5 %.
 
 Wake-identified inflow: ``--identified published`` (default, fast) uses the
 dissertation's MFW-identified 6-state hover model (Eq. 5.3, reference data in
@@ -37,12 +43,11 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from aircraft import coaxial_compound
-from aircraft.helicopter import (Helicopter, HelicopterSettings, coupling_numerator, linearize, modes,
-                                 residualize, trim)
+from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, modes, trim
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
-from aircraft.inflow.published import COAXIAL_HOVER_6STATE
-from controllers import (CommandModel, DelayedLTI, EMFDesign, PIDGains, default_specs, dmo,
-                         evaluate_specs, hq_window, second_order_actuator)
+from aircraft.inflow.published import COAXIAL_HOVER_12STATE, COAXIAL_HOVER_6STATE
+from controllers import (CommandModel, EMFDesign, PIDGains, default_specs, dmo, evaluate_specs, hq_window,
+                         roll_design_plant, second_order_actuator)
 from controllers.metrics import damping_in_band
 
 # reference values of Tables 7.4 / 7.5 (comparison columns only, never outputs)
@@ -51,38 +56,25 @@ DISSERTATION_74 = {"K_p": (0.0413, 0.0413, 0.0326), "K_phi": (0.303, 0.303, 0.58
 DISSERTATION_75 = {"crossover_rad_s": (3.53, 3.47, 5.38), "GM_dB": (7.2, 6.25, 6.00),
                    "PM_deg": (45.0, 73.0, 47.7), "min_zeta_4_20": (0.1048, 0.148, 0.193),
                    "DRB_rad_s": (1.89, 1.97, 2.91), "DRP_dB": (4.38, 2.35, 4.87)}
-CONSTRAINED = {"q": "delta_lon", "r": "delta_ped", "w": "delta_col"}
 
 
 def roll_plant(inflow, settings):
-    """Trim the coaxial in hover with ``inflow``; return (coupling-numerator plant, linear model, trim)."""
-    heli = Helicopter(coaxial_compound(), inflow, settings)
-    tr = trim(heli)
+    """Trim the coaxial in hover with ``inflow``; return (roll design plant, linear model, trim)."""
+    tr = trim(Helicopter(coaxial_compound(), inflow, settings))
     sys = linearize(tr)
-    # heading does not feed back into anything: drop it (a pure integrator)
-    keep = [i for i, n in enumerate(sys.state_labels) if n != "psi"]
-    sys = control.ss(sys.A[np.ix_(keep, keep)], sys.B[keep, :], sys.C[np.ix_(keep, keep)], sys.D[keep, :],
-                     states=[sys.state_labels[i] for i in keep], inputs=sys.input_labels,
-                     outputs=[sys.output_labels[i] for i in keep])
-    plant = coupling_numerator(sys, "p", "delta_lat", CONSTRAINED)
-    # The exact coupling numerator inherits non-minimum-phase zeros of the q/r/w
-    # constraint loops as unstable poles near 100 rad/s (flap-body coupling of this
-    # hingeless rotor): far above the 0.1-20 rad/s design band, they are
-    # residualised (DC gain kept; |error| < 1 %, < 1 deg up to 10 rad/s). A neutral
-    # translational drift mode (no drag in hover, |pole| ~ 3e-4 1/s) nearly cancels
-    # a zero at the origin and is removed by a minimal realisation (< 0.1 % change
-    # at 0.1 rad/s): the roll loop can neither see nor move it.
-    plant = residualize(plant, cutoff=60.0)
-    return control.minreal(plant, tol=1e-3, verbose=False), sys, tr
+    return roll_design_plant(sys), sys, tr
 
 
 def characteristics(design, specs):
     table = evaluate_specs(design, specs).set_index("spec")
+    limiting = table[(table.kind != "objective") & (table.index != "CrsMnG2")].margin.astype(float).idxmin()
     poles = design.closed_loop_poles()
     return {"crossover_rad_s": table.loc["CrsMnG2", "value"], "GM_dB": table.loc["StbMgG1.GM", "value"],
             "PM_deg": table.loc["StbMgG1.PM", "value"], "min_zeta_4_20": damping_in_band(poles, 4, 20),
             "DRB_rad_s": table.loc["DrbRoH1", "value"], "DRP_dB": table.loc["DrpAvH1", "value"],
-            "bandwidth_rad_s": table.loc["BnwAtH1", "value"], "all_specs_met": bool(table[table.kind != "objective"].met.all())}
+            "bandwidth_rad_s": table.loc["BnwAtH1", "value"], "all_specs_met": bool(table[table.kind != "objective"].met.all()),
+            "K_phi": design.gains.K_phi, "K_Iphi": design.gains.K_Iphi, "K_p": design.gains.K_p,
+            "most_limiting_spec": limiting, "its_margin": table.loc[limiting, "margin"]}
 
 
 def _bode(ax_mag, ax_ph, fun, w, label, style="-"):
@@ -176,26 +168,37 @@ def main(argv=None):
     pd.concat([modes(sys_dc).assign(aircraft="Dynamic Climb"), modes(sys_id).assign(aircraft="identified")]) \
         .to_csv(out / "aircraft_modes.csv", index=False)
 
+    plant_12, sys_12, tr_12 = roll_plant(IdentifiedInflow.from_published(COAXIAL_HOVER_12STATE), settings)
+    print(f"  12-state (published Eqs. 6.2-6.3): trim residual {tr_12.max_residual:.1e}")
+
     actuator = second_order_actuator(35.0, 0.7)
     command = CommandModel(frequency=4.0, damping=0.7, gain=0.05)
     start = PIDGains(0.3, 0.1, 0.05)
     print("[stage 3] DMO, case (A): design on the Dynamic-Climb aircraft")
-    base_a = EMFDesign(DelayedLTI(plant_dc), start, command, actuator, sensor_delay=0.01)
+    base_a = EMFDesign(plant_dc, start, command, actuator, sensor_delay=0.01)
     res_a = dmo(base_a, progress=True)
-    print(f"  {res_a.message}")
+    print(f"  {res_a.message} ({res_a.wall_time:.0f} s)")
     print("[stage 3] DMO, case (C): design on the wake-identified aircraft")
-    base_c = EMFDesign(DelayedLTI(plant_id), start, command, actuator, sensor_delay=0.01)
+    base_c = EMFDesign(plant_id, start, command, actuator, sensor_delay=0.01)
     res_c = dmo(base_c, progress=True)
-    print(f"  {res_c.message}")
-    if not (res_a.feasible and res_c.feasible):
-        raise SystemExit("DMO found no feasible design: " + res_a.message + " / " + res_c.message)
+    print(f"  {res_c.message} ({res_c.wall_time:.0f} s)")
+    # case D: one gain set for every plant in this list (one line adds a plant); the
+    # feed-forward (inverse plant, tau_eq) is case C's, as one controller would fly
+    robust_plants = {"DC": plant_dc, "ID 6-state": plant_id, "ID 12-state (published)": plant_12}
+    print(f"[stage 3] DMO, case (D): robust design on {', '.join(robust_plants)}")
+    res_d = dmo([base_c.with_plant(p) for p in robust_plants.values()], progress=True, labels=list(robust_plants))
+    print(f"  {res_d.message} ({res_d.wall_time:.0f} s)")
     cases = {"(A) DC on DC": res_a.design,
-             "(B) DC on ID": res_a.design.with_plant(DelayedLTI(plant_id)),
+             "(B) DC on ID": res_a.design.with_plant(plant_id),
              "(C) ID on ID": res_c.design}
+    robust = {f"(D) robust on {name}": d for name, d in zip(robust_plants, res_d.designs)}
     fa = res_a.history[res_a.history.feasible].iloc[-1]
     fc = res_c.history[res_c.history.feasible].iloc[-1]
+    fd = res_d.history[res_d.history.feasible].iloc[-1]
     specs_a = default_specs(fa.crossover_min, fa.drb_min)
     specs_c = default_specs(fc.crossover_min, fc.drb_min)
+    specs_d = default_specs(fd.crossover_min, fd.drb_min)
+    spec_set = lambda name: specs_d if name.startswith("(D)") else specs_c if name.startswith("(C)") else specs_a
 
     t74 = pd.DataFrame({
         "parameter": ["K_p", "K_phi", "K_Iphi", "tau_eq"],
@@ -203,33 +206,42 @@ def main(argv=None):
                          res_a.design.equivalent_delay],
         "ours (C)": [res_c.design.gains.K_p, res_c.design.gains.K_phi, res_c.design.gains.K_Iphi,
                      res_c.design.equivalent_delay],
+        "ours (D) robust": [res_d.design.gains.K_p, res_d.design.gains.K_phi, res_d.design.gains.K_Iphi,
+                            res_d.design.equivalent_delay],
         "dissertation (A)&(B)": [DISSERTATION_74[k][0] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")],
         "dissertation (C)": [DISSERTATION_74[k][2] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")]})
     rows = []
-    for k, (name, design) in enumerate(cases.items()):
-        ch = characteristics(design, specs_c if name.startswith("(C)") else specs_a)
-        rows.append({"case": name, **ch, **{f"dissertation {key}": val[k] for key, val in DISSERTATION_75.items()}})
+    for name, design in {**cases, **robust}.items():
+        k = "ABC".find(name[1])
+        ch = characteristics(design, spec_set(name))
+        rows.append({"case": name, **ch, **{f"dissertation {key}": (val[k] if k >= 0 else np.nan)
+                                            for key, val in DISSERTATION_75.items()}})
     t75 = pd.DataFrame(rows)
     t74.to_csv(out / "table_7_4_gains.csv", index=False)
     t75.to_csv(out / "table_7_5_characteristics.csv", index=False)
-    pd.concat([res_a.history.assign(case="A"), res_c.history.assign(case="C")]).to_csv(out / "dmo_history.csv", index=False)
+    pd.concat([res_a.history.assign(case="A"), res_c.history.assign(case="C"), res_d.history.assign(case="D")]) \
+        .to_csv(out / "dmo_history.csv", index=False)
     for name, design in cases.items():
-        evaluate_specs(design, specs_c if name.startswith("(C)") else specs_a).assign(case=name) \
-            .to_csv(out / f"specs_{name[1]}.csv", index=False)
+        evaluate_specs(design, spec_set(name)).assign(case=name).to_csv(out / f"specs_{name[1]}.csv", index=False)
+    res_d.specs.assign(case="(D) robust").to_csv(out / "specs_D.csv", index=False)
     figures(cases, out)
     hq_window(list(cases.values()), specs_a, labels=list(cases)).savefig(out / "hq_window.png", dpi=80)
+    hq_window(list(robust.values()), specs_d, labels=list(robust_plants)).savefig(out / "hq_window_robust.png", dpi=80)
 
     fmt = lambda v: f"{v:.4g}"
     pd.set_option("display.width", 200)
     print("\n== Optimal controller parameters (cf. Table 7.4; stick units differ, compare trends) ==")
     print(t74.to_string(index=False, float_format=fmt))
     print("\n== Optimal controller characteristics (cf. Table 7.5) ==")
-    ours = t75[["case", "crossover_rad_s", "GM_dB", "PM_deg", "min_zeta_4_20", "DRB_rad_s", "DRP_dB", "all_specs_met"]]
+    ours = t75[["case", "crossover_rad_s", "GM_dB", "PM_deg", "min_zeta_4_20", "DRB_rad_s", "DRP_dB", "all_specs_met",
+                "most_limiting_spec"]]
     print(ours.to_string(index=False, float_format=fmt))
     print("dissertation: " + "; ".join(f"{k} = {v}" for k, v in DISSERTATION_75.items()))
     wc = t75.crossover_rad_s.values
     print(f"\ncrossover gain from the identified-inflow design, (C)/(A): {wc[2] / wc[0]:.2f} "
           f"(dissertation {DISSERTATION_75['crossover_rad_s'][2] / DISSERTATION_75['crossover_rad_s'][0]:.2f})")
+    print(f"robustness cost, (D) over all plants vs (C): crossover {res_d.crossover:.3f} vs {wc[2]:.3f} rad/s "
+          f"({res_d.crossover / wc[2] - 1:+.1%})")
     print(f"tables and figures in {out}/  (wall {time.perf_counter() - t_start:.0f} s)")
 
 

@@ -43,31 +43,36 @@ def test_with_plant_keeps_gains_inverse_plant_and_delay(design):
     assert other.plant is not design.plant
 
 
-def test_dmo_meets_every_spec_raises_crossover_and_names_limiting_spec(design):
-    first = optimize(design, 1.5, 0.9)
-    assert first.feasible
-    result = dmo(design, progress=False)
-    assert result.feasible and result.limiting
-    assert result.history.feasible.sum() >= 2
-    final = result.history[result.history.feasible].iloc[-1]
-    table = evaluate_specs(result.design, default_specs(final.crossover_min, final.drb_min))
+def test_fast_closed_loop_poles_equal_the_interconnect_spectrum(design):
+    # closed_loop_poles uses feedback(L) + the gain-independent blocks; the full
+    # interconnect model (built independently from named blocks) must have the
+    # same eigenvalues (1e-8 relative: eigenvalue round-off of a 29-state matrix)
+    full = np.linalg.eigvals(design.closed_loop().A)
+    fast = design.closed_loop_poles()
+    assert fast.size == full.size
+    assert max(np.min(np.abs(fast - f)) / max(1.0, abs(f)) for f in full) < 1e-8
+
+
+def test_robust_dmo_meets_every_spec_on_every_plant_and_costs_crossover(design):
+    other = design.with_plant(hover_roll_plant(gain=4.0, roll_damping=1.8, flap_damping=0.2))
+    settings = DMOSettings(tolerance=0.01)
+    alone = dmo(design, progress=False, settings=settings)
+    robust = dmo([design, other], progress=False, settings=settings, labels=["nominal", "other"])
+    assert len(robust.designs) == 2 and robust.designs[0].gains == robust.designs[1].gains
+    final = robust.history[robust.history.feasible].iloc[-1]
+    table = robust.specs
+    assert set(table.plant) == {"nominal", "other"}
     assert table[table.kind != "objective"].met.all()
-    assert final.crossover > first.specs.set_index("spec").loc["CrsMnG2", "value"]
-    # independent re-check: python-control's margins on the Padé state space
-    gm, pm, *_ = control.stability_margins(result.design.broken_loop_statespace(pade_order=4))
-    assert 20 * np.log10(gm) >= 6.0 - 0.5 and pm >= 45.0 - 1.0
-    assert np.all(result.design.closed_loop_poles().real < 0)
-    assert "limiting spec" in result.message
-    fig = hq_window([result.design], default_specs(final.crossover_min, final.drb_min))
-    assert len(fig.axes) >= 10
-
-
-def test_infeasible_request_ends_with_a_report_not_a_trace(design):
-    result = dmo(design, crossover_start=2.0, drb_start=20.0, progress=False,
-                 settings=DMOSettings(max_steps=2))
-    assert not result.feasible and result.design is None
-    assert "DrbRoH1" in result.limiting
-    assert "unmet" in result.message and "DrbRoH1" in result.message
+    # one gain set for two plants cannot beat the best for the nominal alone
+    # (beyond the two bisection tolerances)
+    assert robust.crossover <= alone.crossover * 1.02
+    specs = default_specs(final.crossover_min, final.drb_min)
+    for d in robust.designs:
+        assert evaluate_specs(d, specs).query("kind != 'objective'").met.all()
+    fig = hq_window(robust.designs, specs, labels=["nominal", "other"])
+    assert all(ax.has_data() for ax in fig.axes)      # no empty axes
+    assert len(fig.axes) == len([s for s in specs if s.kind != "objective"]) + 1   # + Nichols chart
+    assert fig.legends and "Level 1" in [t.get_text() for t in fig.legends[0].get_texts()]
 
 
 def test_bad_inputs_are_rejected():
@@ -109,5 +114,11 @@ def test_dmo_does_not_depend_on_the_phase_branch_at_the_lowest_grid_frequency():
     w = DMOSettings().omega
     q = design._g(1j * w) * design._sensor(1j * w)
     assert np.degrees(np.angle(q[0])) < -170
-    result = optimize(design, 1.5, 0.9)
+    # the +0.02 rad/s zero needs integral action to hold the slow mode: with all gains
+    # free the smooth NLP (blind below the phase-constraint band) drops K_Iphi to 0 and
+    # the loop is unstable; the dissertation's tie K_Iphi = K_phi w_c/5 keeps it
+    settings = DMOSettings(tie_integral=True, phase_constraint_from=(0.5, 0.2, 0.1))
+    settings.ipopt = {**settings.ipopt, "ipopt.max_iter": 300}    # this start needs ~100-200 iterations
+    result = optimize(design, 1.5, 0.9, settings=settings)
     assert result.feasible, result.unmet
+    assert result.design.gains.K_Iphi == pytest.approx(result.design.gains.K_phi * 1.5 / 5)

@@ -1,0 +1,135 @@
+"""Independent check of the DMO: a dense search over the same gains, scored by the specs.
+
+:func:`search_designs` scans rays of fixed gain ratios (K_Iphi/K_phi and
+K_p/K_phi on log grids, zero included) densely in the overall gain K_phi, and
+scores every point with :func:`~controllers.specs.evaluate_specs` only (no
+optimiser formula); it then zooms in around the best feasible point.  The rays
+follow the feasible set's long direction (the crossover grows with the overall
+gain), so a fine step is affordable there.  It returns the feasible design with
+the highest crossover (the smallest over the plants for a multi-model search).
+Hundreds of full spec evaluations: meant for tests and benchmarks.
+"""
+from __future__ import annotations
+
+import itertools
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from tqdm.auto import tqdm
+
+from .emf import PIDGains
+from .specs import default_specs
+
+__all__ = ["SearchResult", "search_designs"]
+
+
+@dataclass
+class SearchResult:
+    """Best feasible design of the search and every point scored."""
+
+    design: object
+    designs: list
+    gains: PIDGains
+    crossover: float
+    points: pd.DataFrame
+    wall_time: float
+
+    @property
+    def feasible(self):
+        return self.design is not None
+
+    def to_pandas(self):
+        return self.points.copy()
+
+    def plot(self, fig=None):
+        """Scored points: crossover vs K_phi, feasible ones highlighted; returns a Figure."""
+        from matplotlib.figure import Figure
+        fig = fig or Figure(figsize=(6, 3.5), constrained_layout=True)
+        ax = fig.subplots()
+        p = self.points
+        ok = p.feasible.astype(bool)
+        ax.semilogx(p.K_phi[ok], p.crossover[ok], "o", ms=4, label="feasible")
+        if self.feasible:
+            ax.semilogx(self.gains.K_phi, self.crossover, "r*", ms=12, label="best feasible")
+        ax.set_xlabel("K_phi [stick/rad]")
+        ax.set_ylabel("crossover [rad/s]")
+        ax.set_title(f"{int(ok.sum())} feasible of {len(p)} scored", fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        return fig
+
+
+def search_designs(design, specs=None, n_scale=15, scale_span=(0.2, 5.0), integral_ratios=(0.03, 1.0),
+                   rate_ratios=(0.03, 2.0), n_ratio=5, zoom_rounds=2, reference_frequency=2.0,
+                   progress=False):
+    """Dense search for the feasible gain set with the highest crossover.
+
+    Parameters
+    ----------
+    design : EMFDesign or list of EMFDesign
+        Plant(s) with inverse plant and tau_eq; gains are ignored.
+    specs : list of Spec, optional
+        Every hard/soft spec must be met (default ``default_specs()``).
+    n_scale : int
+        Log-spaced K_phi values per ray, K_phi in ``scale_span`` x k0 with
+        k0 = w_ref / |Q(j w_ref)| (|K_phi/w Q| = 1 at w_ref).
+    integral_ratios, rate_ratios : (float, float)
+        Ranges of K_Iphi / (K_phi w_ref) and K_p w_ref / K_phi, each on
+        ``n_ratio - 1`` log-spaced values plus 0.
+    zoom_rounds : int
+        Refinement rounds: a 3x3x3 grid around the best feasible point, one grid
+        step wide, shrinking 3x per round.
+    reference_frequency : float
+        w_ref [rad/s].
+
+    Returns
+    -------
+    SearchResult
+        ``design`` is None when no point is feasible.
+    """
+    from .dmo import _as_designs, _gain_scale, design_margins
+    designs = _as_designs(design)
+    specs = default_specs() if specs is None else specs
+    if n_scale < 2 or n_ratio < 2:
+        raise ValueError("n_scale and n_ratio must be >= 2")
+    t0 = time.perf_counter()
+    w_ref = reference_frequency
+    k0 = _gain_scale(designs, w_ref)
+    scales = k0 * np.geomspace(*scale_span, n_scale)
+    r_i = np.r_[0.0, np.geomspace(*integral_ratios, n_ratio - 1)]
+    r_p = np.r_[0.0, np.geomspace(*rate_ratios, n_ratio - 1)]
+    rows, best = [], None
+    bar = tqdm(desc="search", disable=not progress)
+
+    def evaluate(k_phi, k_i, k_p):
+        nonlocal best
+        gains = PIDGains(float(k_phi), float(k_i), float(k_p))
+        cands = [d.with_gains(gains) for d in designs]
+        table, unmet, margin, limiting = design_margins(cands, specs, stop_at_first_unmet=True)
+        ok = not unmet
+        wc = float(table.loc[table.spec == "CrsMnG2", "value"].min()) if ok else np.nan
+        rows.append({"K_phi": gains.K_phi, "K_Iphi": gains.K_Iphi, "K_p": gains.K_p, "feasible": ok,
+                     "crossover": wc, "first_unmet": unmet[0] if unmet else ""})
+        bar.update(1)
+        if ok and (best is None or wc > best[1]):
+            best = (cands, wc, gains)
+
+    for a, b in itertools.product(r_i, r_p):
+        for k in scales:
+            evaluate(k, a * k * w_ref, b * k / w_ref)
+    step = np.log(scales[1] / scales[0])
+    for _ in range(zoom_rounds):
+        if best is None:
+            break
+        g = best[2].as_array()
+        axes = [v * np.exp(np.linspace(-step, step, 3)) if v > 0 else np.r_[0.0] for v in g]
+        for point in itertools.product(*axes):
+            evaluate(*point)
+        step /= 3.0
+    bar.close()
+    points = pd.DataFrame(rows)
+    if best is None:
+        return SearchResult(None, [], None, float("nan"), points, time.perf_counter() - t0)
+    return SearchResult(best[0][0], best[0], best[2], best[1], points, time.perf_counter() - t0)
