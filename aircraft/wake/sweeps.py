@@ -19,7 +19,7 @@ import pandas as pd
 
 __all__ = ["SweepSpec", "run_sweeps", "sweep_inputs"]
 
-_CACHE_VERSION = "wake-3"   # bump when the marching code changes results
+_CACHE_VERSION = "wake-4"   # bump when the marching code changes results (4: flap MBC columns, TPP inputs)
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,11 @@ class SweepSpec:
     Parameters
     ----------
     control : str
-        Canonical control name (``"theta0_U"``, ``"theta1s"``, ...).
+        Canonical control name (``"theta0_U"``, ``"theta1s"``, ...), or a
+        prescribed tip-path-plane input (``"beta1s_U"``, ``"beta1c_L"``, ...; rigid
+        flap wakes only): a sweep of the rotor's multiblade flap coordinate about
+        its trim value, which excites the flap rates ``beta1s_dot``/``beta1c_dot``
+        independently of the loads (the flap-rate input of Eq. 4.11, Sec. 6.3).
     kind : {"sweep", "doublet", "sine"}
     amplitude : float
         [rad].
