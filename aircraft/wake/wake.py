@@ -32,7 +32,7 @@ from ..configs import AircraftConfig
 from ..inflow.base import rotor_suffix
 from .biot_savart import segment_velocity, segment_influence, core_radius
 from .outputs import blade_sum_loads, blade_sum_inflow, flap_rate_mbc, flap_mbc
-from .far_wake import far_wake_segments
+from .far_wake import far_wake_segments, initial_far_wake, convect_far_wake
 from .settings import WakeSettings, FlightCondition, WakeSettingsError
 from .threads import single_threaded_blas
 
@@ -292,8 +292,16 @@ class FreeVortexWake:
             self.gamma.append(np.full((rot.nb, s.n_elements), g0))
             self.beta.append(np.zeros(rot.nb))
             self.beta_dot.append(np.zeros(rot.nb))
+        self.far_points, self.far_gamma, self.far_phase = [], [], []
+        if s.far_wake_revolutions > 0 and s.far_wake_convected:
+            for ir in range(len(self.rotors)):
+                pts, g = initial_far_wake(self, ir, self.X[ir])
+                self.far_points.append(pts)
+                self.far_gamma.append(g)
+                self.far_phase.append(0)
         self._first_step = True
         self._last = None
+        self._vbuf_mean = None
         self._solve_blades()
 
     # --------------------------------------------------------------- sources
@@ -463,6 +471,30 @@ class FreeVortexWake:
             p0 += n
         return out
 
+    def _buffer_velocity(self, V):
+        """Convection velocity [m/s] of the frozen buffers (and the convected far wake).
+
+        Markers past the free wake move rigidly with the free stream plus the mean
+        axial velocity of the last free revolution (no self-induced roll-up of the
+        truncated end, no hard cut). One velocity for all rotors: a coaxial's two
+        tip-vortex systems end in one slipstream. Each rotor's own mean (the
+        earlier model) differed by 1.8x in trimmed coaxial hover (15 and 27 m/s at
+        2 free revolutions: whichever system is inside the other at the end of the
+        free wake descends at nearly the full slipstream velocity), so the two
+        buffers drifted apart and the inflow oscillated with the leapfrogging of
+        the two systems through the wake's end.
+
+        Parameters
+        ----------
+        V : list of ndarray
+            Velocities at the free markers of every rotor, each (Nb, n, 3) [m/s].
+        """
+        s = self.settings
+        nf, nrev = s.n_free, s.steps_per_rev
+        k0 = max(nf + 1 - nrev, 0)
+        v_ax = np.mean([(v[:, k0:nf + 1, 2] - self.v_inf[2]).mean() for v in V])
+        return self.v_inf + np.array([0.0, 0.0, min(v_ax, 0.0)])
+
     def _advance_blades(self):
         """Advance azimuth and flapping by one step (symplectic Euler for free flap)."""
         s = self.settings
@@ -500,7 +532,16 @@ class FreeVortexWake:
         nf = s.n_free
         dt = self.dt
         V = self._free_velocity(self.X, nf + 1)
-        Xp = []
+        v_now = self._buffer_velocity(V)
+        tau = s.buffer_velocity_revolutions * 2.0 * math.pi / self.omega
+        if self._vbuf_mean is None or tau <= 0.0:
+            self._vbuf_mean = v_now
+        else:
+            # first-order low pass: the buffer follows the slipstream's slow changes
+            # (quasi-steady inflow), not the end of the free wake's fluctuation
+            self._vbuf_mean = self._vbuf_mean + min(dt / tau, 1.0) * (v_now - self._vbuf_mean)
+        vbuf = self._vbuf_mean
+        Xp, vbufs = [], []
         for ir in range(len(self.rotors)):
             X, Vo = self.X[ir], self.Vold[ir]
             P = np.empty_like(X)
@@ -509,14 +550,9 @@ class FreeVortexWake:
             else:
                 P[:, 1] = X[:, 0] + dt * V[ir][:, 0]
                 P[:, 2:nf + 1] = X[:, 1:nf] + dt * (1.5 * V[ir][:, 1:nf] - 0.5 * Vo[:, :nf - 1])
-            # frozen far-wake buffer: markers past the free wake move rigidly with the
-            # free stream plus the mean axial velocity of the last free revolution
-            # (no self-induced roll-up of the truncated end, no hard cut)
-            nrev = s.steps_per_rev
-            v_ax = (V[ir][:, max(nf + 1 - nrev, 0):nf + 1, 2] - self.v_inf[2]).mean()
-            vbuf = self.v_inf + np.array([0.0, 0.0, min(v_ax, 0.0)])
             P[:, nf + 1:] = X[:, nf:-1] + dt * vbuf
             Xp.append(P)
+            vbufs.append(vbuf)
         self._advance_blades()
         first = self._new_first_markers()
         for ir in range(len(self.rotors)):
@@ -537,6 +573,11 @@ class FreeVortexWake:
             self.X[ir] = Xn
             self.Vold[ir] = V[ir]
             G = self.G_tip[ir]
+            if self.far_points:
+                # the marker leaving the buffer (convected like it, one step older
+                # than the new end, so the junction never has zero length) and its
+                # circulation feed the far wake
+                convect_far_wake(self, ir, vbufs[ir], X[:, -1] + dt * vbufs[ir], G[:, -1])
             G[:, 1:] = G[:, :-1].copy()
         self._first_step = False
         out = self._solve_blades()
@@ -621,7 +662,8 @@ class FreeVortexWake:
         """A deep copy of the marching state (wake, blades, controls, time)."""
         keys = ("t", "psi", "step_count", "X", "Xold", "Vold", "Vbuf", "G_tip", "G_shed", "gamma",
                 "beta", "beta_dot", "_first_step", "_last", "_lam0", "controls", "beta_trim",
-                "flap_inputs", "flap_input_rates")
+                "flap_inputs", "flap_input_rates", "far_points", "far_gamma", "far_phase",
+                "_vbuf_mean")
         return {k: copy.deepcopy(getattr(self, k)) for k in keys}
 
     def restore(self, snap):
