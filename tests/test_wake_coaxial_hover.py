@@ -33,6 +33,10 @@ from aircraft.configs import coaxial_compound
 from aircraft.wake import FreeVortexWake, WakeSettings
 
 COARSE = dict(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
+#: bound on the relative rms of the revolution-averaged trimmed lambda0: measured
+#: 0.09-0.14 % (12-revolution windows) with the filtered common buffer velocity,
+#: 1.15-1.7 % on the main branch; 0.4 % sits 3x from each
+THRESHOLD = 0.004
 
 
 def _contracted_momentum_power(ct_u, ct_l):
@@ -105,7 +109,7 @@ def test_coaxial_induced_power_within_momentum_interference_range(coaxial_and_is
     cp0 = _profile(cfg.rotors[0])
     ct_u, ct_l = co["CT_U"], co["CT_L"]
     p_coax = co["CQ_U"] + co["CQ_L"] - 2 * cp0
-    p_iso = (iso["_U"]["CQ"] - cp0) + (iso["_L"]["CQ"] - cp0)
+    p_iso = (iso["_U"]["CQ_U"] - cp0) + (iso["_L"]["CQ_U"] - cp0)   # one rotor named U
     kappa_int = p_coax / p_iso
     iso_ideal = (ct_u ** 1.5 + ct_l ** 1.5) / math.sqrt(2)
     single_ideal = (ct_u + ct_l) ** 1.5 / math.sqrt(2)

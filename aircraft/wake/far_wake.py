@@ -7,8 +7,12 @@ Two models (``WakeSettings.far_wake_convected``):
   as a far-wake point carrying the circulation it had; the points then move
   rigidly with the buffer's convection velocity. The far wake thus holds the
   history of what left the buffer (strength, radius, height), as the real wake
-  does, and nothing in it jumps when the rotor's state changes.
-* prescribed (the earlier model): an ideal helix rebuilt every step from the
+  does, and nothing in it jumps when the rotor's state changes. Until
+  ``far_wake_revolutions`` have been released, the rest is the prescribed helix
+  below (a starting helix convected from the initial prescribed wake, which
+  descends faster than the free wake, hung detached below the buffer and made the
+  tip vortex bulge to 1.15 R).
+* prescribed: an ideal helix rebuilt every step from the
   current state -- the last free revolution's mean radius, the last buffer turn's
   mean strength for its whole length, a descent at the rotor's current mean
   inflow -- so the whole far wake follows the wake's end instantly.
@@ -110,6 +114,7 @@ def convect_far_wake(wake, ir, v, X_end, g_end):
         g[:, 1:] = g[:, :-1].copy()
         g[:, 0] = g_end
         wake.far_phase[ir] = 0
+        wake.far_released[ir] = min(wake.far_released[ir] + 1, g.shape[1])
 
 
 def far_wake_segments(wake, ir, X, rc_end):
@@ -125,9 +130,19 @@ def far_wake_segments(wake, ir, X, rc_end):
     s = wake.settings
     rot = wake.rotors[ir]
     if s.far_wake_convected:
-        far = wake.far_points[ir]
+        far, g_far = wake.far_points[ir], wake.far_gamma[ir]
+        n_rel = wake.far_released[ir]
+        if n_rel < far.shape[1]:
+            # not yet flushed: past the points released so far, the prescribed helix
+            # of the current wake end (the starting helix, placed from the initial
+            # prescribed wake, would hang detached below the buffer)
+            tail, g_tail = _helix(wake, ir, X, far.shape[1] - n_rel, n_rel + 1)
+            far = np.concatenate([far[:, :n_rel], tail], axis=1)
+            g_far = np.concatenate([g_far[:, :n_rel],
+                                    np.repeat(g_tail[:, None], far.shape[1] - n_rel, axis=1)],
+                                   axis=1)
         # the junction carries the buffer end's own circulation
-        g = np.concatenate([wake.G_tip[ir][:, -1:], wake.far_gamma[ir][:, :-1]], axis=1)
+        g = np.concatenate([wake.G_tip[ir][:, -1:], g_far[:, :-1]], axis=1)
     else:
         n_seg = max(1, int(round(s.far_wake_revolutions * 2 * np.pi / s.far_wake_step)))
         far, g_far = _helix(wake, ir, X, n_seg + 1, 0)

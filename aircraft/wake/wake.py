@@ -292,13 +292,14 @@ class FreeVortexWake:
             self.gamma.append(np.full((rot.nb, s.n_elements), g0))
             self.beta.append(np.zeros(rot.nb))
             self.beta_dot.append(np.zeros(rot.nb))
-        self.far_points, self.far_gamma, self.far_phase = [], [], []
+        self.far_points, self.far_gamma, self.far_phase, self.far_released = [], [], [], []
         if s.far_wake_revolutions > 0 and s.far_wake_convected:
             for ir in range(len(self.rotors)):
                 pts, g = initial_far_wake(self, ir, self.X[ir])
                 self.far_points.append(pts)
                 self.far_gamma.append(g)
                 self.far_phase.append(0)
+                self.far_released.append(0)
         self._first_step = True
         self._last = None
         self._vbuf_mean = None
@@ -663,6 +664,7 @@ class FreeVortexWake:
         keys = ("t", "psi", "step_count", "X", "Xold", "Vold", "Vbuf", "G_tip", "G_shed", "gamma",
                 "beta", "beta_dot", "_first_step", "_last", "_lam0", "controls", "beta_trim",
                 "flap_inputs", "flap_input_rates", "far_points", "far_gamma", "far_phase",
+                "far_released",
                 "_vbuf_mean")
         return {k: copy.deepcopy(getattr(self, k)) for k in keys}
 
