@@ -19,7 +19,8 @@ import pandas as pd
 
 __all__ = ["SweepSpec", "run_sweeps", "sweep_inputs"]
 
-_CACHE_VERSION = "wake-4"   # bump when the marching code changes results (4: flap MBC columns, TPP inputs)
+_CACHE_VERSION = "wake-4"   # bump when the marching code changes results (4: common low-passed buffer
+#                            velocity, convected far wake, flap MBC columns, TPP inputs)
 
 
 @dataclass(frozen=True)
