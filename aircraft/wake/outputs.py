@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["blade_sum_loads", "blade_sum_inflow", "flap_rate_mbc"]
+__all__ = ["blade_sum_loads", "blade_sum_inflow", "flap_rate_mbc", "flap_mbc"]
 
 
 def blade_sum_loads(dT, dQ, r, psi, thrust_scale):
@@ -82,3 +82,26 @@ def flap_rate_mbc(beta, beta_dot, psi, omega):
     b1c_dot = 2.0 / nb * np.sum(beta_dot * c - omega * beta * s)
     b1s_dot = 2.0 / nb * np.sum(beta_dot * s + omega * beta * c)
     return b1s_dot, b1c_dot
+
+
+def flap_mbc(beta, psi):
+    """Multiblade flap coordinates of the blades [rad].
+
+    ``beta0 = 1/N_b sum beta_n``, ``beta1c = 2/N_b sum beta_n cos psi_n``,
+    ``beta1s = 2/N_b sum beta_n sin psi_n`` (exact for N_b >= 3 blades flapping
+    as ``beta0 + beta1c cos psi + beta1s sin psi``).
+
+    Parameters
+    ----------
+    beta : ndarray, shape (Nb,)
+        Blade flap angles [rad].
+    psi : ndarray, shape (Nb,)
+        Blade azimuths in the rotor's own frame [rad].
+
+    Returns
+    -------
+    (beta0, beta1s, beta1c) : floats [rad]
+    """
+    nb = beta.shape[0]
+    return (float(beta.mean()), float(2.0 / nb * np.sum(beta * np.sin(psi))),
+            float(2.0 / nb * np.sum(beta * np.cos(psi))))

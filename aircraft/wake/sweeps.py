@@ -31,7 +31,8 @@ from .cache import WakeCache, WakeCacheError, _finite_tree, check_finite_frame, 
 
 __all__ = ["SweepSpec", "SweepSpecError", "run_sweeps", "sweep_inputs"]
 
-_CACHE_VERSION = "wake-3"   # bump when the marching code changes results
+_CACHE_VERSION = "wake-4"   # bump when the marching code changes results (4: common low-passed buffer
+#                            velocity, convected far wake, flap MBC columns, TPP inputs)
 
 
 def _wake_code_digest():
@@ -55,7 +56,11 @@ class SweepSpec:
     Parameters
     ----------
     control : str
-        Canonical control name (``"theta0_U"``, ``"theta1s"``, ...).
+        Canonical control name (``"theta0_U"``, ``"theta1s"``, ...), or a
+        prescribed tip-path-plane input (``"beta1s_U"``, ``"beta1c_L"``, ...; rigid
+        flap wakes only): a sweep of the rotor's multiblade flap coordinate about
+        its trim value, which excites the flap rates ``beta1s_dot``/``beta1c_dot``
+        independently of the loads (the flap-rate input of Eq. 4.11, Sec. 6.3).
     kind : {"sweep", "doublet", "sine"}
     amplitude : float
         [rad].

@@ -459,7 +459,11 @@ def run_wake(wake, controls=None, duration=1.0, *, points=None, about_trim=True,
     wake : FreeVortexWake
     controls : dict, optional
         ``{name: float | callable(t) | (t_array, u_array)}`` [rad] for any of the
-        canonical controls; others are held.
+        canonical controls; others are held.  Names in
+        ``wake.flap_input_names`` (``beta1s_U``, ``beta1c_U``, ...) prescribe the
+        tip-path plane instead (rigid-flap wakes only, always perturbations about
+        the trim flapping); their rate is the central difference of the history
+        over one step, see :meth:`~FreeVortexWake.set_flap_inputs`.
     duration : float
         Simulated time [s].
     points : dict, optional
@@ -525,6 +529,12 @@ def run_wake(wake, controls=None, duration=1.0, *, points=None, about_trim=True,
                 if n in funcs:
                     u = funcs[n](tn)
                     wake.controls[n] = base[n] + u if about_trim else u
+            flap = [n for n in flap_names if n in funcs]
+            if flap:
+                h = 0.5 * wake.dt
+                wake.set_flap_inputs({n: funcs[n](tn) for n in flap},
+                                     {n: (funcs[n](tn + h) - funcs[n](tn - h)) / wake.dt
+                                      for n in flap})
             wake.step()
             record()
     return pd.DataFrame(rows)

@@ -31,14 +31,16 @@ import pandas as pd
 from ..configs import AircraftConfig
 from ..inflow.base import rotor_suffix
 from .biot_savart import segment_velocity, segment_influence, core_radius
-from .outputs import blade_sum_loads, blade_sum_inflow, flap_rate_mbc
-from .far_wake import far_wake_segments
+from .outputs import blade_sum_loads, blade_sum_inflow, flap_rate_mbc, flap_mbc
+from .far_wake import far_wake_segments, initial_far_wake, convect_far_wake
 from .settings import WakeSettings, FlightCondition, WakeSettingsError
 from .threads import single_threaded_blas
 
 __all__ = ["FreeVortexWake", "WakeDivergedError"]
 
 _CONTROL_KEYS = ("theta0", "theta1s", "theta1c")
+#: prescribed tip-path-plane (multiblade flap) inputs, rigid-flap mode only
+_FLAP_KEYS = ("beta1s", "beta1c")
 
 
 class WakeDivergedError(RuntimeError):
@@ -124,6 +126,10 @@ class FreeVortexWake:
         self.n_near = s.n_near(math.hypot(self.v_inf[0], self.v_inf[1]) / (self.omega * self.rotors[0].R))
         self.controls = {self._cname(k, r.name): 0.0 for r in self.rotors for k in _CONTROL_KEYS}
         self.beta_trim = {r.name: np.zeros(3) for r in self.rotors}  # beta0, beta1c, beta1s
+        #: prescribed tip-path-plane perturbations [rad] and their rates [rad/s]
+        #: (added to ``beta_trim`` when ``free_flapping`` is off; see :meth:`set_flap_inputs`)
+        self.flap_inputs = {self._cname(k, r.name): 0.0 for r in self.rotors for k in _FLAP_KEYS}
+        self.flap_input_rates = dict(self.flap_inputs)
         self.points = {}
         self._trim_state = None
         self.trim_result = None
@@ -143,6 +149,40 @@ class FreeVortexWake:
     @property
     def control_names(self):
         return [self._cname(k, r.name) for r in self.rotors for k in _CONTROL_KEYS]
+
+    @property
+    def flap_input_names(self):
+        """Names of the prescribed tip-path-plane inputs (``beta1s_U``, ``beta1c_U``, ...)."""
+        return [self._cname(k, r.name) for r in self.rotors for k in _FLAP_KEYS]
+
+    def set_flap_inputs(self, values, rates):
+        """Prescribe tip-path-plane perturbations for the next step.
+
+        The blades then flap as ``beta_n = b0 + b1c cos psi_n + b1s sin psi_n`` with
+        ``(b0, b1c, b1s) = beta_trim + inputs`` and the exact rate
+        ``d beta_n / dt = db1c/dt cos psi_n + db1s/dt sin psi_n + Omega (b1s cos psi_n
+        - b1c sin psi_n)``, so the multiblade flap rates ``beta1s_dot``/``beta1c_dot``
+        of :meth:`current_outputs` equal the prescribed ``rates``.  This is the
+        flap-rate excitation of Sec. 6.3 (Eq. 4.11) that separates lambda/C from
+        lambda/beta_dot; it needs ``settings.free_flapping = False``.
+
+        Parameters
+        ----------
+        values : dict
+            ``{name: perturbation}`` [rad] for names in :attr:`flap_input_names`.
+        rates : dict
+            ``{name: time derivative}`` [rad/s], same names.
+        """
+        unknown = (set(values) | set(rates)) - set(self.flap_input_names)
+        if unknown:
+            raise ValueError(f"unknown flap input names {sorted(unknown)}; have {self.flap_input_names}")
+        if self.settings.free_flapping:
+            raise WakeSettingsError("prescribed tip-path-plane inputs need free_flapping=False "
+                                    "(free blades flap with their own dynamics)")
+        for n, v in values.items():
+            self.flap_inputs[n] = float(v)
+        for n, v in rates.items():
+            self.flap_input_rates[n] = float(v)
 
     # ------------------------------------------------------------- kinematics
     def _blade_frames(self, rot, psi, beta):
@@ -252,8 +292,17 @@ class FreeVortexWake:
             self.gamma.append(np.full((rot.nb, s.n_elements), g0))
             self.beta.append(np.zeros(rot.nb))
             self.beta_dot.append(np.zeros(rot.nb))
+        self.far_points, self.far_gamma, self.far_phase, self.far_released = [], [], [], []
+        if s.far_wake_revolutions > 0 and s.far_wake_convected:
+            for ir in range(len(self.rotors)):
+                pts, g = initial_far_wake(self, ir, self.X[ir])
+                self.far_points.append(pts)
+                self.far_gamma.append(g)
+                self.far_phase.append(0)
+                self.far_released.append(0)
         self._first_step = True
         self._last = None
+        self._vbuf_mean = None
         self._solve_blades()
 
     # --------------------------------------------------------------- sources
@@ -398,10 +447,12 @@ class FreeVortexWake:
             l0, l1s, l1c = blade_sum_inflow(lam, rot.r, rot.dr, psis[ir])
             self._lam0[ir] = max(l0, 0.0)
             b1s_dot, b1c_dot = flap_rate_mbc(self.beta[ir], self.beta_dot[ir], psis[ir], self.omega)
+            b0, b1s, b1c = flap_mbc(self.beta[ir], psis[ir])
             # flap moment about the (equivalent) hinge
             mflap = (dL * rot.R * (rot.r[None, :] - rot.e)).sum(axis=1)
             out[rot.name] = dict(CT=ct, CL=cl, CM=cm, CQ=cq, lam0=l0, lam1s=l1s, lam1c=l1c,
-                                 beta1s_dot=b1s_dot, beta1c_dot=b1c_dot, mflap=mflap,
+                                 beta1s_dot=b1s_dot, beta1c_dot=b1c_dot, beta0=b0,
+                                 beta1s=b1s, beta1c=b1c, mflap=mflap,
                                  gamma_max=G.max(axis=1),
                                  gamma_eq=(G * (rot.r * rot.dr)[None, :]).sum(axis=1)
                                  / (rot.r * rot.dr).sum())
@@ -421,6 +472,30 @@ class FreeVortexWake:
             p0 += n
         return out
 
+    def _buffer_velocity(self, V):
+        """Convection velocity [m/s] of the frozen buffers (and the convected far wake).
+
+        Markers past the free wake move rigidly with the free stream plus the mean
+        axial velocity of the last free revolution (no self-induced roll-up of the
+        truncated end, no hard cut). One velocity for all rotors: a coaxial's two
+        tip-vortex systems end in one slipstream. Each rotor's own mean (the
+        earlier model) differed by 1.8x in trimmed coaxial hover (15 and 27 m/s at
+        2 free revolutions: whichever system is inside the other at the end of the
+        free wake descends at nearly the full slipstream velocity), so the two
+        buffers drifted apart and the inflow oscillated with the leapfrogging of
+        the two systems through the wake's end.
+
+        Parameters
+        ----------
+        V : list of ndarray
+            Velocities at the free markers of every rotor, each (Nb, n, 3) [m/s].
+        """
+        s = self.settings
+        nf, nrev = s.n_free, s.steps_per_rev
+        k0 = max(nf + 1 - nrev, 0)
+        v_ax = np.mean([(v[:, k0:nf + 1, 2] - self.v_inf[2]).mean() for v in V])
+        return self.v_inf + np.array([0.0, 0.0, min(v_ax, 0.0)])
+
     def _advance_blades(self):
         """Advance azimuth and flapping by one step (symplectic Euler for free flap)."""
         s = self.settings
@@ -434,9 +509,15 @@ class FreeVortexWake:
                 self.beta_dot[ir] = self.beta_dot[ir] + self.dt * acc
                 self.beta[ir] = self.beta[ir] + self.dt * self.beta_dot[ir]
             else:
+                suf = rotor_suffix(rot.name)
                 b0, b1c, b1s = self.beta_trim[rot.name]
+                b1c = b1c + self.flap_inputs[f"beta1c{suf}"]
+                b1s = b1s + self.flap_inputs[f"beta1s{suf}"]
+                db1c = self.flap_input_rates[f"beta1c{suf}"]
+                db1s = self.flap_input_rates[f"beta1s{suf}"]
                 self.beta[ir] = b0 + b1c * np.cos(psib) + b1s * np.sin(psib)
-                self.beta_dot[ir] = self.omega * (-b1c * np.sin(psib) + b1s * np.cos(psib))
+                self.beta_dot[ir] = (db1c * np.cos(psib) + db1s * np.sin(psib)
+                                     + self.omega * (-b1c * np.sin(psib) + b1s * np.cos(psib)))
 
     def _new_first_markers(self):
         """Position of the k = 0 marker (end of each blade's tip trailer)."""
@@ -452,7 +533,16 @@ class FreeVortexWake:
         nf = s.n_free
         dt = self.dt
         V = self._free_velocity(self.X, nf + 1)
-        Xp = []
+        v_now = self._buffer_velocity(V)
+        tau = s.buffer_velocity_revolutions * 2.0 * math.pi / self.omega
+        if self._vbuf_mean is None or tau <= 0.0:
+            self._vbuf_mean = v_now
+        else:
+            # first-order low pass: the buffer follows the slipstream's slow changes
+            # (quasi-steady inflow), not the end of the free wake's fluctuation
+            self._vbuf_mean = self._vbuf_mean + min(dt / tau, 1.0) * (v_now - self._vbuf_mean)
+        vbuf = self._vbuf_mean
+        Xp, vbufs = [], []
         for ir in range(len(self.rotors)):
             X, Vo = self.X[ir], self.Vold[ir]
             P = np.empty_like(X)
@@ -461,14 +551,9 @@ class FreeVortexWake:
             else:
                 P[:, 1] = X[:, 0] + dt * V[ir][:, 0]
                 P[:, 2:nf + 1] = X[:, 1:nf] + dt * (1.5 * V[ir][:, 1:nf] - 0.5 * Vo[:, :nf - 1])
-            # frozen far-wake buffer: markers past the free wake move rigidly with the
-            # free stream plus the mean axial velocity of the last free revolution
-            # (no self-induced roll-up of the truncated end, no hard cut)
-            nrev = s.steps_per_rev
-            v_ax = (V[ir][:, max(nf + 1 - nrev, 0):nf + 1, 2] - self.v_inf[2]).mean()
-            vbuf = self.v_inf + np.array([0.0, 0.0, min(v_ax, 0.0)])
             P[:, nf + 1:] = X[:, nf:-1] + dt * vbuf
             Xp.append(P)
+            vbufs.append(vbuf)
         self._advance_blades()
         first = self._new_first_markers()
         for ir in range(len(self.rotors)):
@@ -489,6 +574,11 @@ class FreeVortexWake:
             self.X[ir] = Xn
             self.Vold[ir] = V[ir]
             G = self.G_tip[ir]
+            if self.far_points:
+                # the marker leaving the buffer (convected like it, one step older
+                # than the new end, so the junction never has zero length) and its
+                # circulation feed the far wake
+                convect_far_wake(self, ir, vbufs[ir], X[:, -1] + dt * vbufs[ir], G[:, -1])
             G[:, 1:] = G[:, :-1].copy()
         self._first_step = False
         out = self._solve_blades()
@@ -552,7 +642,7 @@ class FreeVortexWake:
             suf = rotor_suffix(rot.name)
             o = self._last[rot.name]
             for key in ("CT", "CL", "CM", "CQ", "lam0", "lam1s", "lam1c",
-                        "beta1s_dot", "beta1c_dot"):
+                        "beta1s_dot", "beta1c_dot", "beta0", "beta1s", "beta1c"):
                 row[f"{key}{suf}"] = float(o[key])
         return row
 
@@ -572,7 +662,10 @@ class FreeVortexWake:
     def snapshot(self):
         """A deep copy of the marching state (wake, blades, controls, time)."""
         keys = ("t", "psi", "step_count", "X", "Xold", "Vold", "Vbuf", "G_tip", "G_shed", "gamma",
-                "beta", "beta_dot", "_first_step", "_last", "_lam0", "controls", "beta_trim")
+                "beta", "beta_dot", "_first_step", "_last", "_lam0", "controls", "beta_trim",
+                "flap_inputs", "flap_input_rates", "far_points", "far_gamma", "far_phase",
+                "far_released",
+                "_vbuf_mean")
         return {k: copy.deepcopy(getattr(self, k)) for k in keys}
 
     def restore(self, snap):
