@@ -230,6 +230,26 @@ def design_margins(designs, specs, labels=None, exclude=("CrsMnG2",), stop_at_fi
     loop are left out, EigLcG1 names the instability), the smallest CONDUIT normalised
     design margin over every non-objective spec and plant except ``exclude``
     (the crossover boundary the DMO drives its design onto), and the spec that has it.
+
+    Parameters
+    ----------
+    designs : EMFDesign or list of EMFDesign
+        One gain set on one or several plants.
+    specs : list of Spec
+        Specs evaluated on each design (:func:`evaluate_specs`).
+    labels : list of str, optional
+        Plant labels (default ``"plant 0"``, ``"plant 1"``, ...).
+    exclude : sequence of str
+        Specs left out of the minimum margin.
+    stop_at_first_unmet : bool
+        Stop at the first unmet spec (and the first plant with one), for speed.
+
+    Returns
+    -------
+    table : pandas.DataFrame
+    unmet : list of str
+    min_margin : float
+    limiting_spec : str
     """
     designs = designs if isinstance(designs, (list, tuple)) else [designs]
     labels = labels or [f"plant {k}" for k in range(len(designs))]

@@ -144,6 +144,8 @@ def roll_design_plant(sys, output="p", input="delta_lat", constrained=None, drop
         Tolerance of step 4; None skips it.
     delay : float
         Pure delay added to the plant [s].
+    name : str, optional
+        Plant name (default ``"output/input | held->control, ..."``).
 
     Returns
     -------

@@ -75,14 +75,20 @@ def search_designs(design, specs=None, n_scale=15, scale_span=(0.2, 5.0), integr
     n_scale : int
         Log-spaced K_phi values per ray, K_phi in ``scale_span`` x k0 with
         k0 = w_ref / |Q(j w_ref)| (|K_phi/w Q| = 1 at w_ref).
+    scale_span : (float, float)
+        Range of K_phi / k0.
     integral_ratios, rate_ratios : (float, float)
         Ranges of K_Iphi / (K_phi w_ref) and K_p w_ref / K_phi, each on
         ``n_ratio - 1`` log-spaced values plus 0.
+    n_ratio : int
+        Values per ratio range (0 included), at least 2.
     zoom_rounds : int
         Refinement rounds: a 3x3x3 grid around the best feasible point, one grid
         step wide, shrinking 3x per round.
     reference_frequency : float
         w_ref [rad/s].
+    progress : bool
+        Show a tqdm counter of the evaluated points.
 
     Returns
     -------

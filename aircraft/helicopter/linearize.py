@@ -40,6 +40,12 @@ def trim_derivatives(trim_result):
     divided by Omega / Omega^2, inflow derivatives by Omega -- the scaling
     :func:`~aircraft.helicopter.trim` converges.
 
+    Parameters
+    ----------
+    trim_result : TrimResult
+        Result of :func:`~aircraft.helicopter.trim`: its ``helicopter``, state
+        ``x`` and controls ``u`` are evaluated.
+
     Returns
     -------
     pandas.Series

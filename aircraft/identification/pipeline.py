@@ -137,6 +137,34 @@ def identification_hash(config, condition, structure, settings=None, *, ct=None,
     :class:`IdentificationSettings` (with the wake resolution), this pipeline's
     :data:`PIPELINE_VERSION` and the wake code's cache version, so a shipped
     model goes stale when any of them changes.
+
+    Parameters
+    ----------
+    config : aircraft.AircraftConfig
+        Rotor(s) identified (hashed by its ``repr``).
+    condition : aircraft.wake.FlightCondition
+        Flight condition (a dataclass, hashed field by field).
+    structure : InflowStructure or str
+        Model structure or a key of :data:`STRUCTURES` (hashed by its ``spec()``).
+    settings : IdentificationSettings, optional
+        Identification settings (default ``IdentificationSettings()``).
+    ct : float, optional
+        Trim thrust coefficient of the system (coaxial: split equally, torques
+        balanced); needed unless ``trim`` is given.
+    trim : dict, optional
+        Full trim request (overrides ``ct``).
+
+    Returns
+    -------
+    hash : str
+        :func:`settings_hash` of ``payload`` (16 hex digits).
+    payload : dict
+        The hashed content.
+
+    Raises
+    ------
+    PipelineError
+        If neither ``ct`` nor ``trim`` is given.
     """
     from aircraft.wake import sweeps as _sweeps
     settings = settings or IdentificationSettings()

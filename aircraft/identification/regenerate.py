@@ -80,7 +80,18 @@ PUBLISHED_FILES = {"published_table4_mfw": "table4_mfw", "published_table4_pitt_
 def published_record(key):
     """A printed model (:data:`aircraft.inflow.published.PUBLISHED_MODELS` key) as a
     :class:`ModelRecord` in our rotor frames, trim from
-    :meth:`IdentifiedInflow.from_published`'s momentum reference."""
+    :meth:`IdentifiedInflow.from_published`'s momentum reference.
+
+    Parameters
+    ----------
+    key : str
+        Key of :data:`aircraft.inflow.published.PUBLISHED_MODELS`.
+
+    Returns
+    -------
+    ModelRecord
+        The printed matrices (``fgc`` or ``mltau`` form) in our rotor frames.
+    """
     from aircraft.inflow import IdentifiedInflow
     from aircraft.inflow.published import PUBLISHED_MODELS, in_rotor_frames
     printed = PUBLISHED_MODELS[key]
@@ -104,7 +115,32 @@ def published_record(key):
 
 
 def regenerate(name, *, n_jobs=2, cache_dir=".cache/wake", progress=True, path=None):
-    """Rebuild one shipped model file; returns the :class:`IdentifiedModel` (or record)."""
+    """Rebuild one shipped model file.
+
+    Parameters
+    ----------
+    name : str
+        Shipped model name: a key of :data:`RECIPES` (identified from the wake)
+        or of :data:`PUBLISHED_FILES` (a printed model, converted).
+    n_jobs : int
+        Wake worker processes.
+    cache_dir : str or None
+        Wake run cache directory.
+    progress : bool
+        Show tqdm progress.
+    path : str or pathlib.Path, optional
+        Where to write (default :func:`shipped_model_path` of ``name``).
+
+    Returns
+    -------
+    IdentifiedModel or ModelRecord
+        The identified model, or the record of a printed model.
+
+    Raises
+    ------
+    KeyError
+        If ``name`` has no recipe.
+    """
     if name in PUBLISHED_FILES:
         rec = published_record(PUBLISHED_FILES[name])
         rec.name = name
@@ -137,6 +173,14 @@ def stale_models():
 
 
 def main(argv=None):
+    """Command line: list, check or regenerate shipped model files.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments (default ``sys.argv[1:]``): model names, and
+        ``--list``, ``--published``, ``--check``, ``--jobs N``, ``--cache DIR``.
+    """
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("names", nargs="*", help="models to regenerate")
     parser.add_argument("--list", action="store_true", help="list recipes and shipped files")

@@ -54,7 +54,17 @@ def _jsonable(x):
 
 
 def settings_hash(payload):
-    """SHA-256 (first 16 hex digits) of a JSON-able payload in canonical form."""
+    """SHA-256 (first 16 hex digits) of a JSON-able payload in canonical form.
+
+    Parameters
+    ----------
+    payload : dict
+        JSON-able content (arrays allowed); serialised with sorted keys.
+
+    Returns
+    -------
+    str
+    """
     import hashlib
     text = json.dumps(_jsonable(payload), sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()[:16]
@@ -197,12 +207,31 @@ def shipped_models():
 
 
 def shipped_model_path(name):
-    """Path of the shipped model file ``name`` (whether it exists or not)."""
+    """Path of the shipped model file ``name`` (whether it exists or not).
+
+    Parameters
+    ----------
+    name : str
+        Model name (file stem).
+
+    Returns
+    -------
+    pathlib.Path
+    """
     return _models_dir() / f"{name}.json"
 
 
 def load_record(path_or_name):
     """Read a model file: a path to a ``.json`` file or the name of a shipped model.
+
+    Parameters
+    ----------
+    path_or_name : str or pathlib.Path
+        Path of a model file, or (no suffix, no such file) a shipped model name.
+
+    Returns
+    -------
+    ModelRecord
 
     Raises
     ------

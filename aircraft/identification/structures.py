@@ -7,13 +7,13 @@ values, proposes a data-driven start from measured lambda/C responses, maps a
 printed model onto its parameters, and turns fitted values into an
 :class:`aircraft.inflow.IdentifiedInflow`.
 
-=======================  ===============================================  ==========
-structure                form                                             parameters
-=======================  ===============================================  ==========
+==========================  ===================================================  ============
+structure                   form                                                 parameters
+==========================  ===================================================  ============
 :class:`SingleRotor3State`  Tables 4.1-4.2: diagonal M, Lbar, tau, cyclic tied   6
 :class:`Coaxial6State`      Eq. 5.3 / §5.3: 2x2 blocks of diagonal 3x3, ties     24
 :class:`Coaxial12State`     Eqs. 6.2-6.3: near/far wake F/G/C, flap-rate inputs  66 (42 tied)
-=======================  ===============================================  ==========
+==========================  ===================================================  ============
 
 ``M`` multiplies d/dpsi (rotor-azimuth time, dimensionless, Eq. 5.3; Tables 4.1-4.2
 print ``M/Omega`` in seconds: divide by Omega); delays are in seconds. The frame
@@ -54,6 +54,11 @@ def _low_frequency_inverse(lam_over_c, n_points):
 
 class InflowStructure:
     """Base class of the structures (see the module table).
+
+    Parameters
+    ----------
+    frame : {"rotor", "printed"}
+        Frame of the parameters: ``"rotor"`` (default) or ``"printed"``.
 
     Attributes
     ----------
@@ -147,6 +152,11 @@ class SingleRotor3State(InflowStructure):
     Diagonal ``M``, ``Lbar``, ``tau``; the cyclic rows are tied by hover symmetry
     (``m22 = m33``, ``l22 = l33``, ``t22 = t33``, §4.3.1.2): 6 parameters. A single
     rotor has one frame, so ``frame`` does not matter.
+
+    Parameters
+    ----------
+    frame : {"rotor", "printed"}
+        Frame of the parameters (no effect for a single rotor).
     """
 
     key = "single_rotor_3state"
@@ -185,6 +195,12 @@ class Coaxial6State(InflowStructure):
     (``m36 = -m25``, ``m63 = -m52``, ``l36 = -l25``, ``l63 = -l52``); in the printed
     frame with the same sign, as §5.3 lists them. Delays are durations and keep
     plain ties.
+
+    Parameters
+    ----------
+    frame : {"rotor", "printed"}
+        ``"rotor"``: our per-rotor frames (default); ``"printed"``: the
+        dissertation's common frame.
     """
 
     key = "coaxial_6state"
@@ -288,6 +304,14 @@ class Coaxial12State(InflowStructure):
     :mod:`aircraft.inflow.published`). Identifying it needs flap-rate excitation
     independent of the loads (prescribed tip-path-plane sweeps, §6.3); the
     pipeline checks for it.
+
+    Parameters
+    ----------
+    frame : {"rotor", "printed"}
+        ``"rotor"``: our per-rotor frames (default); ``"printed"``: the
+        dissertation's common frame.
+    tied : bool
+        Tie the 1c rows to the 1s rows (default); ``False`` frees every entry.
     """
 
     key = "coaxial_12state"
@@ -401,7 +425,23 @@ STRUCTURES = {"single_rotor_3state": SingleRotor3State, "coaxial_6state": Coaxia
 
 
 def get_structure(structure):
-    """A structure instance from an instance, a class or a key of :data:`STRUCTURES`."""
+    """A structure instance from an instance, a class or a key of :data:`STRUCTURES`.
+
+    Parameters
+    ----------
+    structure : InflowStructure, type or str
+        An instance (returned as is), a subclass (instantiated with defaults)
+        or a key of :data:`STRUCTURES`.
+
+    Returns
+    -------
+    InflowStructure
+
+    Raises
+    ------
+    ValueError
+        If ``structure`` is none of these.
+    """
     if isinstance(structure, InflowStructure):
         return structure
     if isinstance(structure, type) and issubclass(structure, InflowStructure):

@@ -56,7 +56,20 @@ def simulate_mltau(M, L, tau, omega, t, u):
 
 
 def mixing_matrix(n, seed):
-    """A well-conditioned, fully populated 'swashplate -> loads' mixing matrix (seeded)."""
+    """A well-conditioned, fully populated 'swashplate -> loads' mixing matrix (seeded).
+
+    Parameters
+    ----------
+    n : int
+        Size (square ``n`` x ``n``).
+    seed : int
+        Seed of :func:`numpy.random.default_rng`.
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+        Identity plus seeded uniform entries in [-0.4, 0.4].
+    """
     rng = np.random.default_rng(seed)
     return np.eye(n) + 0.4 * rng.uniform(-1, 1, size=(n, n))
 
@@ -105,12 +118,35 @@ def coaxial_sweep_set(model, *, seed=0, dt=0.01, duration=100.0, noise=0.02, w_m
 
 def printed_6state_structure(initial, omega):
     """The §5.3 structure in the printed (common) frame, for truths simulated from Eq. 5.3 as
-    printed (:class:`aircraft.identification.Coaxial6State` with ``frame="printed"``)."""
+    printed (:class:`aircraft.identification.Coaxial6State` with ``frame="printed"``).
+
+    Parameters
+    ----------
+    initial : dict
+        Initial values of the 24 parameters (name -> value).
+    omega : float
+        Rotor speed [rad/s].
+
+    Returns
+    -------
+    flightid.MLTauStructure
+    """
     from .structures import Coaxial6State
     return Coaxial6State("printed").build(initial, omega)
 
 
 def printed_6state_values(model):
-    """A printed 6-state model's values on the 24 parameters of §5.3 (printed frame)."""
+    """A printed 6-state model's values on the 24 parameters of §5.3 (printed frame).
+
+    Parameters
+    ----------
+    model : object
+        Printed 6-state M-L-tau model (``M``, ``L``, ``tau`` matrices, ``frame``).
+
+    Returns
+    -------
+    dict
+        Parameter name -> value.
+    """
     from .structures import Coaxial6State
     return Coaxial6State("printed").published_values(model)

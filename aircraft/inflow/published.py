@@ -166,7 +166,18 @@ class PublishedFGCModel:
 
 
 def fgc_state_names(rotors):
-    """States of Eq. 6.2: ``lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF`` per rotor."""
+    """States of Eq. 6.2: ``lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF`` per rotor.
+
+    Parameters
+    ----------
+    rotors : sequence of str
+        Rotor suffixes (``""`` for none), e.g. ``("U", "L")``.
+
+    Returns
+    -------
+    list of str
+        Names with ``_<rotor>`` appended where the suffix is not empty.
+    """
     return [f"{h}{w}{'_' + r if r else ''}" for r in rotors
             for h in ("lam0", "lam1s", "lam1c") for w in ("N", "F")]
 

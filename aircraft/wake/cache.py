@@ -100,7 +100,25 @@ def resolve_cache_dir(cache_dir="default"):
 
 
 def check_finite_frame(df, what="run"):
-    """Raise :class:`WakeCacheError` unless ``df`` is a non-empty DataFrame of finite numbers."""
+    """Raise :class:`WakeCacheError` unless ``df`` is a non-empty DataFrame of finite numbers.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Frame to check (every column numeric and finite).
+    what : str
+        Label starting the error message.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``df`` itself.
+
+    Raises
+    ------
+    WakeCacheError
+        If ``df`` is not a DataFrame, is empty, or has non-numeric or non-finite columns.
+    """
     if not isinstance(df, pd.DataFrame):
         raise WakeCacheError(f"{what}: expected a pandas.DataFrame, got {type(df).__name__}")
     if df.empty:

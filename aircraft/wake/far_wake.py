@@ -34,7 +34,17 @@ __all__ = ["far_wake_segments", "far_wake_release_steps", "initial_far_wake", "c
 
 
 def far_wake_release_steps(settings) -> int:
-    """Steps between two far-wake points (the far-wake chord over the step) [-]."""
+    """Steps between two far-wake points (the far-wake chord over the step) [-].
+
+    Parameters
+    ----------
+    settings : WakeSettings
+        Uses ``far_wake_step`` over ``azimuth_step`` (rounded, at least 1).
+
+    Returns
+    -------
+    int
+    """
     return max(1, int(round(settings.far_wake_step / settings.azimuth_step)))
 
 
@@ -80,6 +90,15 @@ def _helix(wake, ir, X, n_points, start):
 def initial_far_wake(wake, ir, X):
     """Far-wake points and strengths of the starting wake (a prescribed helix).
 
+    Parameters
+    ----------
+    wake : FreeVortexWake
+        The wake (settings, rotors, rotor speed, inflow).
+    ir : int
+        Rotor index.
+    X : ndarray, shape (Nb, n_markers, 3)
+        Tip-vortex marker positions of rotor ``ir`` [m].
+
     Returns
     -------
     points : ndarray, shape (Nb, n_far, 3)
@@ -97,6 +116,11 @@ def convect_far_wake(wake, ir, v, X_end, g_end):
 
     Parameters
     ----------
+    wake : FreeVortexWake
+        The wake (its far-wake buffers ``far_points``, ``far_gamma``,
+        ``far_phase``, ``far_released`` are updated).
+    ir : int
+        Rotor index.
     v : ndarray, shape (3,)
         Convection velocity of the far wake (the buffer's) [m/s].
     X_end : ndarray, shape (Nb, 3)

@@ -160,8 +160,10 @@ class FreeVortexWake:
 
         The blades then flap as ``beta_n = b0 + b1c cos psi_n + b1s sin psi_n`` with
         ``(b0, b1c, b1s) = beta_trim + inputs`` and the exact rate
-        ``d beta_n / dt = db1c/dt cos psi_n + db1s/dt sin psi_n + Omega (b1s cos psi_n
-        - b1c sin psi_n)``, so the multiblade flap rates ``beta1s_dot``/``beta1c_dot``
+
+        ``d beta_n / dt = db1c/dt cos psi_n + db1s/dt sin psi_n + Omega (b1s cos psi_n - b1c sin psi_n)``,
+
+        so the multiblade flap rates ``beta1s_dot``/``beta1c_dot``
         of :meth:`current_outputs` equal the prescribed ``rates``.  This is the
         flap-rate excitation of Sec. 6.3 (Eq. 4.11) that separates lambda/C from
         lambda/beta_dot; it needs ``settings.free_flapping = False``.
