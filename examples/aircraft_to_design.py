@@ -8,13 +8,9 @@ re-checked with python-control.
 
 Runs in about a minute; ``rotorwake main`` does this for three cases A/B/C.
 """
-import control
-import numpy as np
-
 import controllers
 from aircraft import coaxial_compound
-from aircraft.helicopter import (Helicopter, HelicopterSettings, coupling_numerator, linearize, modes,
-                                 residualize, trim)
+from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, modes, trim
 from aircraft.inflow import DynamicClimb
 
 # 1. aircraft + inflow model -> trim -> linear model with named signals
@@ -25,29 +21,20 @@ print(f"trim residual {hover.max_residual:.1e}, C_T upper/lower "
 aircraft = linearize(hover)                   # control.StateSpace: pilot inputs delta_col ... delta_prop
 print(modes(aircraft)[["frequency", "damping", "dominant_states"]].head(8).to_string(index=False))
 
-# 2. the single-axis roll plant. Heading feeds back into nothing (a pure
-#    integrator): drop psi first. The exact coupling numerator carries fast poles
-#    of the constraint loops (~100 rad/s, far above the design band) and a
-#    near-cancelling drift pole/zero pair: residualise above 60 rad/s and take a
-#    minimal realisation.
-keep = [i for i, name in enumerate(aircraft.state_labels) if name != "psi"]
-no_heading = control.ss(aircraft.A[np.ix_(keep, keep)], aircraft.B[keep, :],
-                        aircraft.C[np.ix_(keep, keep)], aircraft.D[keep, :],
-                        states=[aircraft.state_labels[i] for i in keep], inputs=aircraft.input_labels,
-                        outputs=[aircraft.output_labels[i] for i in keep])
-plant = coupling_numerator(no_heading, "p", "delta_lat", {"q": "delta_lon", "r": "delta_ped", "w": "delta_col"})
-plant = control.minreal(residualize(plant, cutoff=60.0), tol=1e-3, verbose=False)
+# 2. the single-axis roll plant p/delta_lat with pitch, yaw and heave held
+#    (Eq. 7.21). roll_design_plant drops psi (a pure integrator that feeds back
+#    into nothing), takes the exact coupling numerator, residualises its fast
+#    constraint-loop poles above 60 rad/s and takes a minimal realisation.
+plant = controllers.roll_design_plant(aircraft)
 
 # 3. explicit model following (Fig. 7.12): command model, actuator, sensor delay,
 #    PID starting gains; then DMO raises the crossover and DRB boundaries
 design = controllers.EMFDesign(
-    controllers.DelayedLTI(plant), controllers.PIDGains(0.3, 0.1, 0.05),
+    plant, controllers.PIDGains(0.3, 0.1, 0.05),
     controllers.CommandModel(frequency=4.0, damping=0.7, gain=0.05),   # [rad/s], [-], [rad/s per stick]
     controllers.second_order_actuator(35.0, 0.7),                      # [rad/s], [-]
     sensor_delay=0.01)                                                 # [s]
-result = controllers.dmo(design, progress=False)
-if not result.feasible:                       # design is None when no boundary is met
-    raise SystemExit(f"DMO found no feasible design: {result.message}")
+result = controllers.dmo(design, progress=False)   # raises InfeasibleDesignError if nothing is feasible
 print(result.message)
 
 # 4. the design's specs (Table 7.3), re-checked with python-control, and its HQ window
