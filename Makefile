@@ -24,7 +24,7 @@ $(DOCS_STAMP): $(STAMP)
 	touch $(DOCS_STAMP)
 
 study: $(STAMP)
-	MPLBACKEND=Agg $(PY) -m studies.hover_control_comparison
+	MPLBACKEND=Agg $(PY) -m studies.cli main
 
 # one numba thread per pytest worker: two workers already fill the two CI cores
 test: $(STAMP)

@@ -15,7 +15,7 @@ import pandas as pd
 from aircraft import coaxial_compound
 from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, trim
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
-from aircraft.inflow.published import COAXIAL_HOVER_12STATE, COAXIAL_HOVER_6STATE
+from aircraft.inflow.published import COAXIAL_HOVER_12STATE, COAXIAL_HOVER_6STATE, in_rotor_frames
 from controllers import (CommandModel, EMFDesign, PIDGains, default_specs, dmo, hover_roll_plant,
                          roll_design_plant, search_designs, second_order_actuator)
 
@@ -34,8 +34,8 @@ def main(argv=None):
     cases = {"hand plant": EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.2), actuator=second_order_actuator())}
     if not args.quick:
         cases["A (Dynamic Climb)"] = _aircraft(DynamicClimb())
-        cases["C (6-state Eq. 5.3)"] = _aircraft(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE))
-        twelve = _aircraft(IdentifiedInflow.from_published(COAXIAL_HOVER_12STATE))
+        cases["C (6-state Eq. 5.3)"] = _aircraft(IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE)))
+        twelve = _aircraft(IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_12STATE)))
         c = cases["C (6-state Eq. 5.3)"]
         cases["D (robust: DC, 6-state, 12-state)"] = [c.with_plant(cases["A (Dynamic Climb)"].plant), c,
                                                      c.with_plant(twelve.plant)]

@@ -34,8 +34,8 @@ def inflow_models():
     return {"Dynamic Climb (K_R = 1.5)": DynamicClimb(kr=KR_ANALYTICAL),
             "Climbing Lower Rotor": ClimbingLowerRotor(),
             "Isolated Rotors": IsolatedRotors(),
-            "MFW ID 6-state (Eq. 5.3)": IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE),
-            "MFW ID 12-state (Eqs. 6.8-6.9)": IdentifiedInflow.from_published(COAXIAL_HOVER_12STATE)}
+            "MFW ID 6-state (Eq. 5.3)": IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE)),
+            "MFW ID 12-state (Eqs. 6.8-6.9)": IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_12STATE))}
 
 
 def main(out_dir="results/bare_airframe"):

@@ -28,7 +28,7 @@ from aircraft import coaxial_compound
 from aircraft.helicopter import (Helicopter, HelicopterSettings, classify_modes, flap_mode_sensitivity,
                                  linearize, pair_modes, trim)
 from aircraft.inflow import ClimbingLowerRotor, IdentifiedInflow
-from aircraft.inflow.published import COAXIAL_HOVER_6STATE
+from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
 
 # printed description -> our physics label (hover: the lateral real mode is the roll
 # subsidence, printed "spiral"; the two slowest printed inflow poles are taken as the
@@ -226,7 +226,7 @@ def main(out_dir="results/coaxial_hover_poles", with_sensitivity=True):
     fmt = lambda v: f"{v:.4g}"          # noqa: E731
     config = coaxial_compound()
     ours_clr, tr_clr = pole_table(ClimbingLowerRotor(), config)
-    ours_id, tr_id = pole_table(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE), config)
+    ours_id, tr_id = pole_table(IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE)), config)
     ref1, ref2 = reference_table(TABLE_7_1), reference_table(TABLE_7_2, momentum_inflow=False)
     ours_prev, _ = pole_table(ClimbingLowerRotor(), previous_config(config))
     ours_prev.to_csv(out / "poles_clr_previous_assumptions.csv", index=False)

@@ -40,7 +40,7 @@ TABLE_5_1 = {("lam0_U", "CT_U"): 3.7, ("lam0_L", "CT_U"): 17.2, ("lam1c_U", "CM_
 STRUCTURE = Coaxial6State("rotor")
 
 
-def identify(settings=None, *, sweep_s=45.0, n_jobs=2, cache_dir=".cache/wake", progress=True):
+def identify(settings=None, *, sweep_s=45.0, n_jobs=2, cache_dir="default", progress=True):
     """Wake runs -> reduced 6-state fit. Returns ``(reduction, trim, model, omega)``
     (``model``: the :class:`aircraft.identification.IdentifiedModel`)."""
     ct = COAXIAL_HOVER_6STATE.condition["CT_U"] + COAXIAL_HOVER_6STATE.condition["CT_L"]

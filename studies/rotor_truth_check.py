@@ -39,7 +39,7 @@ from matplotlib.figure import Figure
 from aircraft import coaxial_compound
 from aircraft.helicopter import ShaftFixedRotors
 from aircraft.inflow import DynamicClimb, IdentifiedInflow, IsolatedRotors, KR_ANALYTICAL
-from aircraft.inflow.published import COAXIAL_HOVER_6STATE
+from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
 from aircraft.wake import FlightCondition, SweepSpec, WakeSettings, run_sweeps
 from flightid import frequency_response
 from flightid.verification import theil_inequality
@@ -72,7 +72,7 @@ def models(wake_trim):
     o = wake_trim.outputs
     loads = np.array([o["CT_U"], 0, 0, o["CT_L"], 0, 0])
     inflow = np.array([o[k] for k in ("lam0_U", "lam1s_U", "lam1c_U", "lam0_L", "lam1s_L", "lam1c_L")])
-    pub = IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE)
+    pub = IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE))
     out = {"(b) ID 6-state, Eq. 5.3": IdentifiedInflow(pub.system, ("U", "L"), loads, inflow, name=pub.name)}
     ours = _our_wake_model(o)
     if ours is not None:
@@ -105,7 +105,7 @@ def main(out_dir="results/rotor_truth_check", n_jobs=1):
     print("[a] free wake, free flapping: trim + doublets + sweep (cached after the first run)")
     runs = run_sweeps(config, SETTINGS, FlightCondition(), DOUBLETS + [SWEEP],
                       trim={"ct": (ct / 2, ct / 2), "mode": "torque_balance", "tol": 1e-4},
-                      n_jobs=n_jobs, cache_dir=".cache/wake", progress=True)
+                      n_jobs=n_jobs, cache_dir="default", progress=True)
     wtrim = runs["trim"]
     ct_wake = wtrim.outputs["CT_U"] + wtrim.outputs["CT_L"]
     print(f"    wake trim: C_T U/L {wtrim.outputs['CT_U']:.5f}/{wtrim.outputs['CT_L']:.5f}")

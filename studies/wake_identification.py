@@ -49,7 +49,7 @@ def coefficient_table(model):
 
 
 def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, out_dir="results/wake_identification", n_jobs=2,
-              cache_dir=".cache/wake", progress=True, verbose=True):
+              cache_dir="default", progress=True, verbose=True):
     """Run the identification; return ``(coefficient table, IdentifiedModel)``."""
     t_start = time.perf_counter()
     id_settings = IdentificationSettings(wake=settings or WakeSettings(), sweep_s=sweep_s)

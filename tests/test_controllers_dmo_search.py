@@ -14,7 +14,7 @@ import control
 from aircraft import coaxial_compound
 from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, trim
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
-from aircraft.inflow.published import COAXIAL_HOVER_6STATE
+from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
 from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default_specs, dmo, evaluate_specs,
                          hover_roll_plant, roll_design_plant, search_designs, second_order_actuator)
 
@@ -39,7 +39,7 @@ PLANTS = {
                                                                          flap_frequency=10.0, flap_damping=0.3,
                                                                          delay=0.005)),
     "case A (Dynamic Climb)": lambda: _aircraft(DynamicClimb()),
-    "case C (identified 6-state, Eq. 5.3)": lambda: _aircraft(IdentifiedInflow.from_published(COAXIAL_HOVER_6STATE)),
+    "case C (identified 6-state, Eq. 5.3)": lambda: _aircraft(IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE))),
 }
 SLOW = {"case A (Dynamic Climb)", "case C (identified 6-state, Eq. 5.3)"}
 

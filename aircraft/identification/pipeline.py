@@ -335,7 +335,7 @@ def _verify(model, run, ref, inputs, outputs):
 
 
 def identify_inflow(config, condition=None, structure="single_rotor_3state", *, ct=None, trim=None,
-                    settings=None, controls=None, name=None, n_jobs=2, cache_dir=".cache/wake",
+                    settings=None, controls=None, name=None, n_jobs=2, cache_dir="default",
                     progress=True):
     """Identify an inflow model of ``config`` from the free-vortex wake.
 
@@ -362,7 +362,7 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     n_jobs : int
         Wake worker processes.
     cache_dir : str or None
-        Wake run cache (see :func:`aircraft.wake.run_sweeps`).
+        Wake run cache folder; "default" is $ROTORWAKE_CACHE_DIR, else .cache/wake (see :func:`aircraft.wake.run_sweeps`).
     progress : bool
         tqdm progress over the stages, the wake runs and the reduction.
 

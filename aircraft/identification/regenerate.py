@@ -114,7 +114,7 @@ def published_record(key):
                                    f"output), converted to our rotor frames. {model.notes}")
 
 
-def regenerate(name, *, n_jobs=2, cache_dir=".cache/wake", progress=True, path=None):
+def regenerate(name, *, n_jobs=2, cache_dir="default", progress=True, path=None):
     """Rebuild one shipped model file.
 
     Parameters
@@ -187,7 +187,7 @@ def main(argv=None):
     parser.add_argument("--published", action="store_true", help="(re)write the printed models' files")
     parser.add_argument("--check", action="store_true", help="report stale shipped files")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--cache", default=".cache/wake")
+    parser.add_argument("--cache", default="default", help="wake run cache folder (default: $ROTORWAKE_CACHE_DIR, else .cache/wake)")
     args = parser.parse_args(argv)
     if args.list:
         print("recipes:", ", ".join(sorted(RECIPES)))

@@ -649,7 +649,22 @@ class FreeVortexWake:
         return row
 
     def march(self, n_steps, callback=None):
-        """March ``n_steps`` with the current controls; mean outputs over them."""
+        """March ``n_steps`` with the current controls; mean outputs over them.
+
+        Parameters
+        ----------
+        n_steps : int
+            Number of wake time steps (>= 1) of ``dt`` [s] each.
+        callback : callable, optional
+            Called with the wake after every step.
+
+        Returns
+        -------
+        dict
+            Output name -> mean over the steps.
+        """
+        if isinstance(n_steps, bool) or not float(n_steps).is_integer() or int(n_steps) < 1:
+            raise ValueError(f"march: n_steps must be an integer >= 1 (wake time steps), got {n_steps!r}")
         acc = None
         with single_threaded_blas():
             for _ in range(int(n_steps)):
@@ -658,7 +673,7 @@ class FreeVortexWake:
                 if callback is not None:
                     callback(self)
                 acc = dict(row) if acc is None else {k: acc[k] + row[k] for k in acc}
-        return {k: v / max(int(n_steps), 1) for k, v in acc.items()}
+        return {k: v / int(n_steps) for k, v in acc.items()}
 
     # ----------------------------------------------------------- snapshots
     def snapshot(self):
