@@ -23,7 +23,7 @@ import pandas as pd
 
 from aircraft.helicopter import coupling_numerator, compare_bare_airframe, flap_mode_damping
 from aircraft.inflow import ClimbingLowerRotor, DynamicClimb, IdentifiedInflow, IsolatedRotors, KR_ANALYTICAL
-from aircraft.inflow.published import COAXIAL_HOVER_6STATE, COAXIAL_HOVER_12STATE
+from aircraft.inflow.published import COAXIAL_HOVER_6STATE, COAXIAL_HOVER_12STATE, in_rotor_frames
 
 #: §7.4.2.2 (Fig. 7.11, p/delta_lat with the other axes held): regressive flap [zeta, omega_n] (reference)
 SECTION_7422 = {"Dynamic Climb": (0.175, 17.7), "MFW ID 12-state": (0.288, 19.7)}

@@ -50,7 +50,7 @@ from aircraft.inflow import DynamicClimb, IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_12STATE, COAXIAL_HOVER_6STATE, in_rotor_frames
 from controllers import (CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo,
                          evaluate_specs, hq_window, roll_design_plant, second_order_actuator)
-from controllers.metrics import damping_in_band
+from controllers.metrics import damping_in_band, gain_phase_margins
 
 # reference values of Tables 7.4 / 7.5 (comparison columns only, never outputs)
 DISSERTATION_74 = {"K_p": (0.0413, 0.0413, 0.0326), "K_phi": (0.303, 0.303, 0.582),
@@ -81,8 +81,30 @@ def characteristics(design, specs):
 
 def _bode(ax_mag, ax_ph, fun, w, label, style="-"):
     h = fun.response(w)
-    ax_mag.semilogx(w, 20 * np.log10(np.abs(h)), style, label=label)
-    ax_ph.semilogx(w, np.degrees(np.unwrap(np.angle(h))), style, label=label)
+    mag, phase = 20 * np.log10(np.abs(h)), np.degrees(np.unwrap(np.angle(h)))
+    lines = ax_mag.semilogx(w, mag, style, label=label)
+    ax_ph.semilogx(w, phase, style, label=label)
+    return mag, phase, lines[0].get_color()
+
+
+def _mark_margins(ax_mag, ax_ph, w, mag, phase, color, loop):
+    """Crossover, gain margin and phase margin of ``loop`` on its Bode plot: the
+    values are controllers.gain_phase_margins' (the specs' own metric); the -180 deg
+    line is drawn on the branch of the plotted (unwrapped) phase at crossover."""
+    gm, pm, w180, wc = gain_phase_margins(loop)
+    if np.isfinite(wc):
+        ph_c = np.interp(np.log(wc), np.log(w), phase)
+        ref = ph_c - pm
+        ax_mag.axvline(wc, color=color, ls=":", lw=0.8)
+        ax_ph.vlines(wc, ref, ph_c, color=color, lw=2.5, alpha=0.6)
+        ax_ph.axhline(ref, color="0.4", lw=0.6, ls="--")
+        ax_ph.annotate(f"PM {pm:.0f}°", (wc, 0.5 * (ref + ph_c)), fontsize=7, color=color,
+                       xytext=(4, 0), textcoords="offset points")
+    if np.isfinite(w180) and np.isfinite(gm):
+        m180 = np.interp(np.log(w180), np.log(w), mag)
+        ax_mag.vlines(w180, m180, 0.0, color=color, lw=2.5, alpha=0.6)
+        ax_mag.annotate(f"GM {gm:.1f} dB", (w180, 0.5 * m180), fontsize=7, color=color,
+                        xytext=(4, 0), textcoords="offset points")
 
 
 def figures(cases, out):
@@ -92,7 +114,8 @@ def figures(cases, out):
     axes = fig.subplots(2, 3)
     for name in names:
         d = cases[name]
-        _bode(axes[0, 0], axes[1, 0], d.broken_loop(), w, name)
+        mag, phase, color = _bode(axes[0, 0], axes[1, 0], d.broken_loop(), w, name)
+        _mark_margins(axes[0, 0], axes[1, 0], w, mag, phase, color, d.broken_loop())
         _bode(axes[0, 1], axes[1, 1], d.roll_rate_response(), w, name)
         _bode(axes[0, 2], axes[1, 2], d.disturbance_response(), w, name)
     cmd = cases[names[0]]
@@ -107,7 +130,11 @@ def figures(cases, out):
         ax.set_ylabel("deg")
     for ax in axes.ravel():
         ax.grid(True, which="both", alpha=0.3)
+    axes[0, 0].axhline(0.0, color="0.4", lw=0.6, ls="--")
+    axes[0, 0].text(0.02, 0.02, "dotted: crossover; bars: GM at the -180° crossing, PM at crossover\n"
+                    "(controllers.gain_phase_margins)", transform=axes[0, 0].transAxes, fontsize=6.5)
     axes[0, 0].legend(fontsize=8)
+    axes[0, 1].legend(fontsize=7)
     fig.savefig(out / "frequency_responses.png", dpi=90)
 
     fig = Figure(figsize=(11, 7), constrained_layout=True)
