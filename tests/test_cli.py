@@ -1,15 +1,33 @@
-"""The `rotorwake` command line: fast help, dispatch to the studies, manifests."""
+"""The `rotorwake` command line: fast help, dispatch to the studies, manifests.
+
+The command line lives with the studies it dispatches to; like every study it is
+run here as a program (a subprocess), never imported by the tests.
+"""
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
 
-import pytest
-
 from aircraft.provenance import check_results
-from studies import cli
 
 ROOT = Path(__file__).resolve().parents[1]
+ENV = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
+
+
+def _python(code):
+    """Run ``code`` in a fresh interpreter at the repository root; its stdout."""
+    return subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=ENV, capture_output=True, text=True,
+                          check=True, timeout=300).stdout
+
+
+def _rotorwake(*args):
+    """``rotorwake ARGS`` as a user runs it; the completed process."""
+    return subprocess.run([sys.executable, "-m", "studies.cli", *map(str, args)], cwd=ROOT, env=ENV,
+                          capture_output=True, text=True, timeout=300)
+
+
+_STUDY_NAMES = "from studies import cli; print(' '.join(cli.STUDIES))"
 
 
 def test_help_is_fast_and_lists_every_study():
@@ -20,31 +38,35 @@ def test_help_is_fast_and_lists_every_study():
             "try:\n    cli.main(['--help'])\nexcept SystemExit:\n    pass\n"
             "heavy = [m for m in ('numba', 'casadi', 'control', 'scipy', 'pandas', 'matplotlib') if m in sys.modules]\n"
             "print('HEAVY', heavy)")
-    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True)
-    assert "HEAVY []" in out.stdout
-    for name in cli.STUDIES:
-        assert name in out.stdout
-    assert "results" in out.stdout and "check-results" in out.stdout
+    out = _python(code)
+    assert "HEAVY []" in out
+    for name in _python(_STUDY_NAMES).split():
+        assert name in out
+    assert "results" in out and "check-results" in out
 
 
 def test_every_study_command_names_a_study_with_a_main():
-    import importlib
-    for study in cli.STUDIES.values():
-        module = importlib.import_module(study.module)
-        assert callable(module.main), study.module
+    out = _python("import importlib\nfrom studies import cli\n"
+                  "for study in cli.STUDIES.values():\n"
+                  "    print(study.module, callable(importlib.import_module(study.module).main))")
+    rows = [line.split() for line in out.splitlines()]
+    assert len(rows) >= 8 and all(ok == "True" for _, ok in rows), rows
 
 
 def test_long_runs_say_so_and_how_long():
-    minutes, folders, note = cli._plan(cli.STUDIES["main"], ["--identified", "wake"])
-    assert minutes >= 10
-    assert folders == [Path("results/identification_demo"), Path("results/hover_control_comparison_wake")]
-    minutes, folders, _ = cli._plan(cli.STUDIES["main"], ["--out=/x", "--skip-identification"])
-    assert folders == [Path("/x/hover_control_comparison")]
+    out = _python("from studies import cli\n"
+                  "for argv in (['--identified', 'wake'], ['--out=/x', '--skip-identification']):\n"
+                  "    minutes, folders, note = cli._plan(cli.STUDIES['main'], argv)\n"
+                  "    print(minutes, *folders)")
+    wake, skip = [line.split() for line in out.splitlines()]
+    assert float(wake[0]) >= 10
+    assert wake[1:] == ["results/identification_demo", "results/hover_control_comparison_wake"]
+    assert skip[1:] == ["/x/hover_control_comparison"]
 
 
 def test_study_run_writes_a_fresh_manifest_and_staleness_is_detected(tmp_path, capsys):
     out = tmp_path / "results" / "pitt_peters_hover_check"
-    cli.main(["pitt-peters-hover-check", "--out", str(out)])
+    assert _rotorwake("pitt-peters-hover-check", "--out", out).returncode == 0
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["settings"] == {"command": "pitt-peters-hover-check", "options": []}   # --out not hashed
     assert len(manifest["settings_hash"]) == 64 and manifest["machine"]["cores"] >= 1
@@ -52,7 +74,7 @@ def test_study_run_writes_a_fresh_manifest_and_staleness_is_detected(tmp_path, c
     assert "studies/pitt_peters_hover_check.py" in manifest["sources"]
     assert "aircraft/inflow/pitt_peters.py" in manifest["sources"]
     assert set(manifest["files"]) == {"matrices.csv", "forward_flight.csv"}
-    assert cli.main(["check-results", "--results", str(tmp_path / "results")]) == 0
+    assert _rotorwake("check-results", "--results", tmp_path / "results").returncode == 0
     # a hand-edited table is "modified"
     (out / "matrices.csv").write_text("edited\n")
     assert check_results(tmp_path / "results").status.tolist() == ["modified"]
@@ -62,7 +84,7 @@ def test_study_run_writes_a_fresh_manifest_and_staleness_is_detected(tmp_path, c
     (out / "manifest.json").write_text(json.dumps(manifest))
     table = check_results(tmp_path / "results")
     assert table.status.tolist() == ["stale"] and "pitt_peters_hover_check.py" in table.detail[0]
-    assert cli.main(["check-results", "--results", str(tmp_path / "results")]) == 1
+    assert _rotorwake("check-results", "--results", tmp_path / "results").returncode == 1
 
 
 def test_results_folder_without_manifest_is_reported(tmp_path):
@@ -72,18 +94,15 @@ def test_results_folder_without_manifest_is_reported(tmp_path):
 
 
 def test_unknown_command_is_an_error():
-    with pytest.raises(SystemExit) as exc:
-        cli.main(["no-such-study"])
-    assert exc.value.code == 2
+    assert _rotorwake("no-such-study").returncode == 2
 
 
-def test_study_help_shows_each_option_with_its_default(capsys):
-    import argparse
-    before = argparse.ArgumentParser.__init__
-    with pytest.raises(SystemExit) as exc:
-        cli.main(["identification-demo", "--help"])
-    assert exc.value.code == 0
-    text = capsys.readouterr().out
+def test_study_help_shows_each_option_with_its_default():
+    text = _python("import argparse\nfrom studies import cli\nbefore = argparse.ArgumentParser.__init__\n"
+                   "try:\n    cli.main(['identification-demo', '--help'])\nexcept SystemExit as exc:\n"
+                   "    print('EXIT', exc.code)\n"
+                   "print('RESTORED', argparse.ArgumentParser.__init__ is before)")
+    assert "EXIT 0" in text
     assert "usage: rotorwake identification-demo" in text
     assert "default: 0" in text and "default: results/identification_demo" in text
-    assert argparse.ArgumentParser.__init__ is before     # the help-only patch is undone
+    assert "RESTORED True" in text     # the help-only patch is undone
