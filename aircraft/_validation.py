@@ -7,45 +7,20 @@ passed, not later as a "loads contain NaN" or a diverged wake.
 """
 from __future__ import annotations
 
-import math
-import numbers
-
-import numpy as np
+from flightid._validation import integer as _integer
+from flightid._validation import real_scalar
 
 
 def real(error, name, value, *, positive=False, nonnegative=False, lo=None, hi=None, unit=""):
-    """``value`` as a finite real float in range, else ``error`` naming ``name``."""
-    unit = f" [{unit}]" if unit else ""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Number):
-        raise error(f"{name} must be a real number{unit}, got {value!r}")
-    if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
-        raise error(f"{name} must be real{unit}, got the complex value {value!r}")
-    v = float(value)
-    if not math.isfinite(v):
-        raise error(f"{name} must be finite{unit}, got {value!r}")
-    if positive and not v > 0:
-        raise error(f"{name} must be positive (> 0){unit}, got {v!r}")
-    if nonnegative and v < 0:
-        raise error(f"{name} must be non-negative (>= 0){unit}, got {v!r}")
-    if lo is not None and v < lo:
-        raise error(f"{name} must be >= {lo:g}{unit}, got {v!r}")
-    if hi is not None and v > hi:
-        raise error(f"{name} must be <= {hi:g}{unit}, got {v!r}")
-    return v
+    """``value`` as a finite real float in range, else ``error`` naming ``name``
+    (flightid's check; every complex value is refused here)."""
+    return real_scalar(name, value, positive=positive, nonnegative=nonnegative, lo=lo, hi=hi, unit=unit,
+                       error=error, complex_zero_ok=False)
 
 
 def integer(error, name, value, *, minimum=None):
     """``value`` as an int (not a bool or a fractional float), at least ``minimum``."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)) \
-                and math.isfinite(value) and float(value).is_integer():
-            value = int(value)
-        else:
-            raise error(f"{name} must be an integer, got {value!r}")
-    value = int(value)
-    if minimum is not None and value < minimum:
-        raise error(f"{name} must be an integer >= {minimum}, got {value}")
-    return value
+    return _integer(name, value, minimum=minimum, error=error)
 
 
 def vector(error, name, value, size, unit=""):

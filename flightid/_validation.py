@@ -15,43 +15,48 @@ from .errors import DataError, InputValueError, SignalNameError
 
 
 def real_scalar(name, value, *, positive=False, nonnegative=False, lo=None, hi=None,
-                lo_open=False, hi_open=False, unit=""):
-    """``value`` as a finite real float, or an InputValueError naming ``name``."""
+                lo_open=False, hi_open=False, unit="", error=InputValueError, complex_zero_ok=True):
+    """``value`` as a finite real float, or ``error`` (a ValueError subclass) naming ``name``.
+
+    ``complex_zero_ok``: a complex value with zero imaginary part is taken as real
+    (flightid's convention for computed quantities); False refuses every complex
+    value (the aircraft configurations' convention for typed-in parameters).
+    """
     unit = f" [{unit}]" if unit else ""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Number, np.ndarray)):
-        raise InputValueError(f"{name} must be a real number{unit}, got {value!r}")
+        raise error(f"{name} must be a real number{unit}, got {value!r}")
     if isinstance(value, np.ndarray):
         if value.ndim != 0:
-            raise InputValueError(f"{name} must be a scalar{unit}, got an array of shape {value.shape}")
+            raise error(f"{name} must be a scalar{unit}, got an array of shape {value.shape}")
         value = value[()]
     if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
-        if np.imag(value) != 0:
-            raise InputValueError(f"{name} must be real{unit}, got the complex value {value!r}")
+        if np.imag(value) != 0 or not complex_zero_ok:
+            raise error(f"{name} must be real{unit}, got the complex value {value!r}")
         value = np.real(value)
     v = float(value)
     if not np.isfinite(v):
-        raise InputValueError(f"{name} must be finite{unit}, got {value!r}")
+        raise error(f"{name} must be finite{unit}, got {value!r}")
     if positive and not v > 0:
-        raise InputValueError(f"{name} must be positive (> 0){unit}, got {v!r}")
+        raise error(f"{name} must be positive (> 0){unit}, got {v!r}")
     if nonnegative and v < 0:
-        raise InputValueError(f"{name} must be non-negative (>= 0){unit}, got {v!r}")
+        raise error(f"{name} must be non-negative (>= 0){unit}, got {v!r}")
     if lo is not None and (v < lo or (lo_open and v == lo)):
-        raise InputValueError(f"{name} must be {'>' if lo_open else '>='} {lo:g}{unit}, got {v!r}")
+        raise error(f"{name} must be {'>' if lo_open else '>='} {lo:g}{unit}, got {v!r}")
     if hi is not None and (v > hi or (hi_open and v == hi)):
-        raise InputValueError(f"{name} must be {'<' if hi_open else '<='} {hi:g}{unit}, got {v!r}")
+        raise error(f"{name} must be {'<' if hi_open else '<='} {hi:g}{unit}, got {v!r}")
     return v
 
 
-def integer(name, value, *, minimum=None):
+def integer(name, value, *, minimum=None, error=InputValueError):
     """``value`` as an int (no bool, no non-integral float), at least ``minimum``."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
         if isinstance(value, numbers.Real) and float(value).is_integer():
             value = int(value)
         else:
-            raise InputValueError(f"{name} must be an integer, got {value!r}")
+            raise error(f"{name} must be an integer, got {value!r}")
     value = int(value)
     if minimum is not None and value < minimum:
-        raise InputValueError(f"{name} must be an integer >= {minimum}, got {value}")
+        raise error(f"{name} must be an integer >= {minimum}, got {value}")
     return value
 
 
