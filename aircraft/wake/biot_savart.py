@@ -47,7 +47,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-__all__ = ["segment_velocity", "segment_velocity_numpy", "segment_influence",
+__all__ = ["kernel_backend", "set_kernel_backend", "KERNEL_ENV", "segment_velocity", "segment_velocity_numpy", "segment_influence",
            "core_radius", "VATISTAS_ALPHA", "CROSS_MACHINE_RTOL"]
 
 #: Lamb-Oseen constant alpha in the core-growth law [-].
@@ -186,6 +186,61 @@ def _check(targets, seg_a, seg_b, gamma, rc):
 
 _PRECISIONS = {"double": np.float64, "single": np.float32}
 
+#: Environment variable choosing the Biot-Savart backend: ``auto`` (default: the
+#: GPU kernel of :mod:`aircraft.wake.gpu` when a CUDA device is present, else the
+#: CPU kernel), ``cpu`` or ``gpu``.
+KERNEL_ENV = "ROTORWAKE_KERNEL"
+_BACKENDS = ("auto", "cpu", "gpu")
+_backend = None        # resolved once: reading the environment per call would cost
+
+
+def _gpu_module():
+    try:
+        from . import gpu
+    except ImportError:   # no GPU kernel in this installation
+        return None
+    return gpu
+
+
+def set_kernel_backend(name="auto"):
+    """Choose the Biot-Savart backend for this process.
+
+    Parameters
+    ----------
+    name : {"auto", "cpu", "gpu"}
+        ``"auto"``: the GPU kernel when a CUDA device is usable, else the CPU
+        kernel; ``"gpu"`` raises if no device is usable.
+
+    Returns
+    -------
+    str
+        The backend now in use, ``"cpu"`` or ``"gpu"``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name, or ``"gpu"`` without a usable device.
+    """
+    global _backend
+    if name not in _BACKENDS:
+        raise ValueError(f"kernel backend must be one of {_BACKENDS}, got {name!r}")
+    gpu = _gpu_module()
+    usable = gpu is not None and gpu.available()
+    if name == "gpu" and not usable:
+        raise ValueError("kernel backend 'gpu' requested but no CUDA device is usable "
+                         "(aircraft.wake.gpu.available() is False)")
+    _backend = "gpu" if (name == "gpu" or (name == "auto" and usable)) else "cpu"
+    return _backend
+
+
+def kernel_backend():
+    """The Biot-Savart backend in use, ``"cpu"`` or ``"gpu"`` (first call: from
+    ``$ROTORWAKE_KERNEL``, default ``auto``; see :func:`set_kernel_backend`)."""
+    if _backend is None:
+        import os
+        set_kernel_backend(os.environ.get(KERNEL_ENV, "auto").strip().lower() or "auto")
+    return _backend
+
 
 def segment_velocity(targets, seg_a, seg_b, gamma, rc, precision="double"):
     """Velocity induced at ``targets`` by straight vortex segments (compiled kernel).
@@ -216,6 +271,8 @@ def segment_velocity(targets, seg_a, seg_b, gamma, rc, precision="double"):
     targets, seg_a, seg_b, gamma, rc = _check(targets, seg_a, seg_b, gamma, rc)
     if seg_a.shape[0] == 0 or targets.shape[0] == 0:
         return np.zeros((targets.shape[0], 3))
+    if kernel_backend() == "gpu":
+        return _gpu_module().segment_velocity(targets, seg_a, seg_b, gamma, rc, precision)
     dtype = _PRECISIONS[precision]
     r0 = seg_b - seg_a
     rcl = rc * rc * np.einsum("ij,ij->i", r0, r0)

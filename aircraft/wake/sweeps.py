@@ -19,8 +19,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import multiprocessing
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, asdict
 from pathlib import Path
 
@@ -28,6 +26,8 @@ import numpy as np
 
 from .._validation import real as _real
 from .cache import WakeCache, WakeCacheError, _finite_tree, check_finite_frame, resolve_cache_dir
+from .executor import make_executor
+from .records import _run_spec, _trim   # noqa: F401 - looked up here at call time (tests patch them)
 
 __all__ = ["SweepSpec", "SweepSpecError", "run_sweeps", "sweep_inputs"]
 
@@ -35,17 +35,50 @@ _CACHE_VERSION = "wake-4"   # bump when the marching code changes results (4: co
 #                            velocity, convected far wake, flap MBC columns, TPP inputs)
 
 
+#: Modules of this package that cannot change a number (orchestration: cache I/O,
+#: keys and progress, where runs execute, re-exports). The cache's code digest leaves
+#: them out so that a new executor keeps a cache of hours of wake runs; the input
+#: signals they generate are keyed by content instead (:func:`_signal_digest`).
+_ORCHESTRATION = ("__init__.py", "cache.py", "executor.py", "sweeps.py", "gpu.py")
+
+
 def _wake_code_digest():
-    """SHA-256 of the wake package's and the configurations' source files.
+    """SHA-256 of the wake's numbers-producing source files and the configurations.
 
     Part of every cache key: an entry computed by other marching code (even a
     changed rounding, e.g. the Biot-Savart kernel) is never served, without
-    relying on anyone remembering to bump _CACHE_VERSION.
+    relying on anyone remembering to bump _CACHE_VERSION. The orchestration
+    modules (:data:`_ORCHESTRATION`) are left out; the GPU kernel's source joins
+    the key when that kernel is the one in use (:func:`_kernel_key`).
     """
     digest = hashlib.sha256()
     here = Path(__file__).resolve().parent
     for path in sorted(here.glob("*.py")) + [here.parent / "configs.py"]:
+        if path.name in _ORCHESTRATION and path.parent == here:
+            continue
         digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()
+
+
+def _kernel_key():
+    """Cache-key entries of the Biot-Savart backend: none for the CPU kernel (its
+    source is in the code digest), the backend name and its source otherwise."""
+    from .biot_savart import kernel_backend
+    backend = kernel_backend()
+    if backend == "cpu":
+        return {}
+    src = Path(__file__).resolve().parent / "gpu.py"
+    return {"kernel": backend, "kernel_code": hashlib.sha256(src.read_bytes()).hexdigest()}
+
+
+def _signal_digest(spec, dt):
+    """SHA-256 of the input time histories ``spec`` produces at step ``dt`` [s]: the
+    key holds what the wake is driven with, whatever code generated it."""
+    digest = hashlib.sha256()
+    for control, (t, u) in sorted(spec.inputs(dt).items()):
+        digest.update(control.encode() + b"\0")
+        digest.update(np.ascontiguousarray(t, dtype=np.float64).tobytes())
+        digest.update(np.ascontiguousarray(u, dtype=np.float64).tobytes())
     return digest.hexdigest()
 
 
@@ -122,6 +155,15 @@ class SweepSpec:
     def name(self):
         return self.label or f"{self.kind}_{self.control}"
 
+    @property
+    def controls(self):
+        """Controls this record moves."""
+        return (self.control,)
+
+    def inputs(self, dt):
+        """``{control: (t, u)}``: the record's input time history [s, rad] at step ``dt`` [s]."""
+        return {self.control: sweep_inputs(self, dt)}
+
 
 class SweepSpecError(ValueError):
     """A :class:`SweepSpec` field is NaN, infinite, complex, of the wrong type or out of range."""
@@ -150,26 +192,6 @@ def _init_pool_worker():
     # one kernel thread per worker process: the pool already fills the cores
     import numba
     numba.set_num_threads(1)
-
-
-def _trim(config, settings, flight, trim):
-    """Trim a fresh wake; ``(snapshot, WakeTrim)``."""
-    from .wake import FreeVortexWake
-    wake = FreeVortexWake(config, settings, flight)
-    trim_result = wake.trim(**trim)
-    return wake._trim_state, trim_result
-
-
-def _run_spec(config, settings, flight, snap, trim_result, spec, points):
-    """One record from the trimmed wake state ``snap`` (a pandas.DataFrame)."""
-    from .wake import FreeVortexWake
-    wake = FreeVortexWake(config, settings, flight)
-    wake.restore(snap)
-    wake._trim_state = snap
-    wake.trim_result = trim_result
-    t, u = sweep_inputs(spec, wake.dt)
-    return wake.run({spec.control: (np.asarray(t), np.asarray(u))}, duration=float(t[-1]),
-                    points=points)
 
 
 def _check_run(spec):
@@ -303,8 +325,9 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     points = dict(points or {})
     base = {"v": _CACHE_VERSION, "code": _wake_code_digest(), "config": repr(config), "settings": asdict(settings),
             "flight": asdict(flight), "trim": trim,
-            "points": {k: list(map(float, v)) for k, v in points.items()}}
-    keys = {s.name: _key({**base, "spec": asdict(s)}) for s in specs}
+            "points": {k: list(map(float, v)) for k, v in points.items()}, **_kernel_key()}
+    dt = settings.azimuth_step / float(config.rotors[0].omega)   # the wake's time step [s]
+    keys = {s.name: _key({**base, "spec": asdict(s), "signal": _signal_digest(s, dt)}) for s in specs}
     folder = resolve_cache_dir(cache_dir)
     cache = WakeCache(folder, _CACHE_VERSION) if folder is not None else None
     results, todo = {}, []
@@ -331,19 +354,10 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
              str(folder) if cache is not None else None, keys[s.name]) for s in todo]
     bar = tqdm(total=len(specs), initial=len(specs) - len(todo), desc="wake sweeps",
                disable=not progress)
-    if n_jobs <= 1 or len(jobs) <= 1:
-        for job in jobs:
-            name, df = _worker(job)
+    with make_executor(n_jobs if len(jobs) > 1 else 1, initializer=_init_pool_worker) as executor:
+        for name, df in executor.map_unordered(_worker, jobs):
             results[name] = df
             bar.update()
-    else:
-        # "spawn", not fork: numba's OpenMP threading layer aborts a forked child
-        # ("fork() called from a process already using GNU OpenMP")
-        with ProcessPoolExecutor(max_workers=n_jobs, mp_context=multiprocessing.get_context("spawn"),
-                                 initializer=_init_pool_worker) as pool:
-            for name, df in pool.map(_worker, jobs):
-                results[name] = df
-                bar.update()
     bar.close()
     out = {s.name: results[s.name] for s in specs}
     out["trim"] = trim_result
