@@ -1,37 +1,40 @@
 """Main job: impact of inflow modelling on hover control design (dissertation §7.5).
 
-Four cases, same explicit-model-following structure (Fig. 7.12), same command
-model, actuator and sensor:
+Same explicit-model-following structure (Fig. 7.12), command model, actuator and
+sensor in every case:
 
 * (A) design optimised (DMO) on the Dynamic-Climb (DC) aircraft, applied to it;
 * (B) the same design (gains, inverse plant, tau_eq) applied to the aircraft with
   the wake-identified inflow model;
 * (C) design optimised on the wake-identified aircraft, applied to it;
 * (D) one robust design (CONDUIT multi-case) meeting every spec on the
-  Dynamic-Climb and the identified 6-state (Eq. 5.3) aircraft at once, started
-  from the case C (then A) design and keeping its inverse plant and tau_eq.
-  Add a plant to ``robust_plants`` in :func:`main` to add it to case D.
+  Dynamic-Climb and the wake-identified aircraft at once, started from the case C
+  (then A) design and keeping its inverse plant and tau_eq. Add a plant to
+  ``robust_plants`` in :func:`main` to add it to case D.
+
+The wake-identified inflow of cases B and C is, by default, **our 12-state
+near/far-wake model with flap-rate inputs** (Eqs. 6.2-6.3 structure, as the
+dissertation's §7.5 flew), identified from our own free-vortex wake and shipped as
+``aircraft/data/models/coaxial_hover_12state.json``. Further rows fly our 6-state
+model (``coaxial_hover_6state``) and the dissertation's printed Eq. 5.3 model
+(converted to our rotor frames by :func:`aircraft.inflow.published.in_rotor_frames`)
+the same way: (B) the DC design on that aircraft, (C) a design optimised on it.
+``--identified published`` puts Eq. 5.3 in cases B/C instead (the former default);
+``--regenerate`` rebuilds both shipped models from the free wake first (about 40
+minutes on 2 cores uncached; progress shown, wake runs cached).
 
 Each aircraft is our coaxial model (:mod:`aircraft.helicopter`) trimmed in hover
 and linearised; the roll-axis plant is the coupling numerator
 p/delta_lat | q->delta_lon, r->delta_ped, w->delta_col (Eq. 7.21), built by
 :func:`controllers.roll_design_plant`. All three PID gains are free (no K_Iphi
 tie), bounded below by 0; the DMO raises its boundaries by bisection to 0.5 %.
-
-Wake-identified inflow: ``--identified published`` (default, fast) uses the
-dissertation's MFW-identified 6-state hover model (Eq. 5.3, reference data in
-:mod:`aircraft.inflow.published`), converted to our rotor frames by
-:func:`aircraft.inflow.published.in_rotor_frames`; ``--identified ours`` uses our
-shipped file ``coaxial_hover_6state`` (seconds); ``--identified wake`` uses the 6-state model
-identified from our own free wake by :mod:`studies.coaxial_wake_identification`
-(six sweeps, about 8 minutes on 2 cores the first time, cached after). The
-aircraft, trim, linearisation, EMF and DMO are ours either way. Stage 1 also runs
-the identification pipeline end to end on an embedded truth
+Stage 1 also runs the identification pipeline end to end on an embedded truth
 (:mod:`studies.identification_demo`).
 
 Writes tables (CSV) and figures (PNG) under ``results/hover_control_comparison/``
 and prints Tables 7.4/7.5-style summaries with the dissertation's values in
-separate columns.  Run: ``make study`` or ``python -m studies.hover_control_comparison``.
+separate columns (for cases A, B, C).  Run: ``make study`` or
+``python -m studies.hover_control_comparison``.
 """
 from __future__ import annotations
 
@@ -39,7 +42,6 @@ import argparse
 import time
 from pathlib import Path
 
-import control
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
@@ -47,7 +49,7 @@ from matplotlib.figure import Figure
 from aircraft import coaxial_compound
 from aircraft.helicopter import Helicopter, HelicopterSettings, flap_mode_damping, linearize, modes, trim
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
-from aircraft.inflow.published import COAXIAL_HOVER_12STATE, COAXIAL_HOVER_6STATE, in_rotor_frames
+from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
 from controllers import (CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo,
                          evaluate_specs, hq_window, roll_design_plant, second_order_actuator)
 from controllers.metrics import damping_in_band, gain_phase_margins
@@ -162,16 +164,31 @@ def figures(cases, out):
     fig.savefig(out / "time_responses.png", dpi=90)
 
 
+def _design(plant, start, command, actuator, label):
+    """DMO on one plant (None, with the reason printed, if no design is feasible)."""
+    base = EMFDesign(plant, start, command, actuator, sensor_delay=0.01)
+    try:
+        res = dmo(base, progress=True)
+    except InfeasibleDesignError as err:
+        print(f"  {label}: infeasible ({err})")
+        return None
+    print(f"  {label}: {res.message} ({res.wall_time:.0f} s)")
+    return res
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description="Hover control comparison (dissertation §7.5)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the identification stage")
     parser.add_argument("--out", default="results", help="output folder")
     parser.add_argument("--skip-identification", action="store_true")
     parser.add_argument("--n-span", type=int, default=8, help="blade-element Gauss points")
-    parser.add_argument("--identified", choices=("published", "ours", "wake"), default="published",
-                        help="wake-identified inflow: the dissertation's Eq. 5.3 model (converted to our "
-                             "rotor frames), ours from the shipped file aircraft/data/models/"
-                             "coaxial_hover_6state.json, or ours re-identified from the wake now")
+    parser.add_argument("--identified", choices=("ours", "published"), default="ours",
+                        help="inflow of cases B and C: our 12-state model identified from our free wake "
+                             "(shipped file aircraft/data/models/coaxial_hover_12state.json; default), or the "
+                             "dissertation's Eq. 5.3 6-state model converted to our rotor frames")
+    parser.add_argument("--regenerate", action="store_true",
+                        help="rebuild our shipped 6- and 12-state models from the free wake first "
+                             "(progress shown, wake runs cached; ~40 min on 2 cores uncached)")
     args = parser.parse_args(argv)
     t_start = time.perf_counter()
     if not args.skip_identification:
@@ -179,58 +196,68 @@ def main(argv=None):
         print("[stage 1] identification pipeline on the embedded 6-state coaxial truth")
         cost = run_demo(seed=args.seed, out_dir=f"{args.out}/identification_demo")
         print(f"[stage 1] done: J_ave = {cost.J.mean():.2f} over {len(cost)} responses\n")
+    if args.regenerate:
+        from aircraft.identification import regenerate
+        for name in ("coaxial_hover_6state", "coaxial_hover_12state"):
+            print(f"[regenerate] {name} from the free wake")
+            regenerate(name, progress=True)
 
-    suffix = {"published": "", "ours": "_ours", "wake": "_wake"}[args.identified]
+    suffix = {"ours": "", "published": "_published"}[args.identified]
     out = Path(args.out) / ("hover_control_comparison" + suffix)
     out.mkdir(parents=True, exist_ok=True)
     settings = HelicopterSettings(n_span=args.n_span, n_average=1)   # hover: axisymmetric
-    print("[stage 2] trim + linearise the coaxial in hover with both inflow models")
-    plant_dc, sys_dc, tr_dc = roll_plant(DynamicClimb(), settings)
-    if args.identified == "wake":
-        from studies.coaxial_wake_identification import identified_inflow, identify
-        print("  identifying the 6-state inflow model from our free wake (cached after the first run)")
-        reduction, wake_trim, _, omega = identify()
-        print(f"  identified: J_ave = {reduction.result.J_ave:.1f}")
-        inflow_id = identified_inflow(reduction, wake_trim, omega)
-    elif args.identified == "ours":
+    # the inflow models flown: Dynamic Climb, the identified model of cases B/C, and
+    # (with ours) our 6-state model and the printed Eq. 5.3 model as further rows
+    published6 = IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE))
+    if args.identified == "ours":
         from aircraft.identification import load_record
-        record = load_record("coaxial_hover_6state")
-        print(f"  our 6-state model from its shipped file: {record.description}")
-        inflow_id = IdentifiedInflow.from_file("coaxial_hover_6state")
+        inflows = {"ID": IdentifiedInflow.from_file("coaxial_hover_12state"),
+                   "ID6": IdentifiedInflow.from_file("coaxial_hover_6state"), "Eq. 5.3": published6}
+        for key, name in (("ID", "coaxial_hover_12state"), ("ID6", "coaxial_hover_6state")):
+            rec = load_record(name)
+            trusted = rec.parameters[rec.parameters.status == "free"]
+            trusted = bool((trusted.cramer_rao_pct < 20).all() and (trusted.insensitivity_pct < 10).all())
+            print(f"  {key}: shipped {name} (J_ave {rec.cost_table.J.mean():.1f}, "
+                  f"{'trusted' if trusted else 'NOT trusted: see its CR/insensitivity'})")
     else:
-        inflow_id = IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE))
-    plant_id, sys_id, tr_id = roll_plant(inflow_id, settings)
-    for name, tr in (("DC", tr_dc), ("ID", tr_id)):
-        print(f"  {name}: trim residual {tr.max_residual:.1e}, C_T U/L = {tr.loads['CT_U']:.5f}/{tr.loads['CT_L']:.5f}")
-    pd.concat([modes(sys_dc).assign(aircraft="Dynamic Climb"), modes(sys_id).assign(aircraft="identified")]) \
+        inflows = {"ID": published6}
+    labels = {"ID": "our 12-state" if args.identified == "ours" else "Eq. 5.3", "ID6": "our 6-state",
+              "Eq. 5.3": "Eq. 5.3 (printed)"}
+    print("[stage 2] trim + linearise the coaxial in hover with each inflow model")
+    plant_dc, sys_dc, tr_dc = roll_plant(DynamicClimb(), settings)
+    plants, systems = {"DC": plant_dc}, {"DC": sys_dc}
+    print(f"  DC: trim residual {tr_dc.max_residual:.1e}, C_T U/L = {tr_dc.loads['CT_U']:.5f}/{tr_dc.loads['CT_L']:.5f}")
+    for key, inflow in inflows.items():
+        plants[key], systems[key], tr = roll_plant(inflow, settings)
+        print(f"  {key} ({labels[key]}): trim residual {tr.max_residual:.1e}, "
+              f"C_T U/L = {tr.loads['CT_U']:.5f}/{tr.loads['CT_L']:.5f}")
+    pd.concat([modes(systems[k]).assign(aircraft=("Dynamic Climb" if k == "DC" else labels[k])) for k in systems]) \
         .to_csv(out / "aircraft_modes.csv", index=False)
-
-    plant_12, sys_12, tr_12 = roll_plant(IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_12STATE)), settings)
-    print(f"  12-state (published Eqs. 6.2-6.3): trim residual {tr_12.max_residual:.1e}")
 
     actuator = second_order_actuator(35.0, 0.7)
     command = CommandModel(frequency=4.0, damping=0.7, gain=0.05)
     start = PIDGains(0.3, 0.1, 0.05)
     print("[stage 3] DMO, case (A): design on the Dynamic-Climb aircraft")
-    base_a = EMFDesign(plant_dc, start, command, actuator, sensor_delay=0.01)
-    res_a = dmo(base_a, progress=True)
-    print(f"  {res_a.message} ({res_a.wall_time:.0f} s)")
-    print("[stage 3] DMO, case (C): design on the wake-identified aircraft")
-    base_c = EMFDesign(plant_id, start, command, actuator, sensor_delay=0.01)
-    res_c = dmo(base_c, progress=True)
-    print(f"  {res_c.message} ({res_c.wall_time:.0f} s)")
+    res_a = _design(plant_dc, start, command, actuator, "case (A)")
+    if res_a is None:
+        raise SystemExit("case (A) has no feasible design: nothing to compare against")
+    results = {"A": res_a}
+    for key in inflows:
+        print(f"[stage 3] DMO on the {labels[key]} aircraft")
+        results[key] = _design(plants[key], start, command, actuator, f"design on {labels[key]}")
+    res_c = results["ID"]
+    if res_c is None:
+        raise SystemExit(f"case (C) on the {labels['ID']} aircraft has no feasible design")
     # case D: one gain set for every plant in this list (one line adds a plant); the
     # feed-forward (inverse plant, tau_eq) is case C's, as one controller would fly
-    # (the published 12-state aircraft is left out: with it no gain set keeps every
-    # closed loop stable at the starting boundaries (EigLcG1 on that aircraft, from
-    # every start tried); its frame and sign reading is still open, see the README)
-    robust_plants = {"DC": plant_dc, "ID 6-state": plant_id}
+    robust_plants = {"DC": plant_dc, labels["ID"]: plants["ID"]}
     print(f"[stage 3] DMO, case (D): robust design on {', '.join(robust_plants)}")
     # start from the optimised single-plant designs (their gains and feed-forward):
     # a robust design, if one exists, lies nearer those than the generic start
     res_d, d_failures = None, []
     for label, start_design in (("case C design", res_c.design), ("case A design", res_a.design),
-                                ("starting gains", base_c)):
+                                ("starting gains", EMFDesign(plants["ID"], start, command, actuator,
+                                                             sensor_delay=0.01))):
         try:
             res_d = dmo([start_design.with_plant(p) for p in robust_plants.values()], progress=True,
                         labels=list(robust_plants))
@@ -243,44 +270,61 @@ def main(argv=None):
         print("  case (D): no gain set meets every spec on all plants at the starting boundaries; "
               "it is reported as infeasible (robust_infeasible.txt), not as a design")
         (out / "robust_infeasible.txt").write_text("\n".join(d_failures) + "\n")
-    cases = {"(A) DC on DC": res_a.design,
-             "(B) DC on ID": res_a.design.with_plant(plant_id),
-             "(C) ID on ID": res_c.design}
+    else:
+        (out / "robust_infeasible.txt").unlink(missing_ok=True)
+    # (case name, design, plant key of the bare airframe, dissertation column or None)
+    rows_spec = [("(A) DC on DC", res_a.design, "DC", 0),
+                 (f"(B) DC on {labels['ID']}", res_a.design.with_plant(plants["ID"]), "ID", 1),
+                 (f"(C) {labels['ID']} on {labels['ID']}", res_c.design, "ID", 2)]
+    for key in ("ID6", "Eq. 5.3"):
+        if key in inflows:
+            rows_spec.append((f"(B) DC on {labels[key]}", res_a.design.with_plant(plants[key]), key, None))
+            if results[key] is not None:
+                rows_spec.append((f"(C) {labels[key]} on {labels[key]}", results[key].design, key, None))
+    cases = {name: design for name, design, _, _ in rows_spec}
+    bare_of = {name: key for name, _, key, _ in rows_spec}
+    column = {name: col for name, _, _, col in rows_spec}
+    specs_of = {name: ("A" if name.startswith("(A)") or name.startswith("(B)") else
+                       next(k for k in inflows if name.endswith(f"on {labels[k]}"))) for name in cases}
     robust = ({f"(D) robust on {name}": d for name, d in zip(robust_plants, res_d.designs)}
               if res_d is not None else {})
-    fa = res_a.history[res_a.history.feasible].iloc[-1]
-    fc = res_c.history[res_c.history.feasible].iloc[-1]
-    fd = res_d.history[res_d.history.feasible].iloc[-1] if res_d is not None else fc
-    specs_a = default_specs(fa.crossover_min, fa.drb_min)
-    specs_c = default_specs(fc.crossover_min, fc.drb_min)
-    specs_d = default_specs(fd.crossover_min, fd.drb_min)
-    spec_set = lambda name: specs_d if name.startswith("(D)") else specs_c if name.startswith("(C)") else specs_a
+    for name, key in zip(robust, robust_plants):
+        bare_of[name] = "DC" if key == "DC" else "ID"
+        column[name] = None
 
-    t74 = pd.DataFrame({
-        "parameter": ["K_p", "K_phi", "K_Iphi", "tau_eq"],
-        "ours (A)&(B)": [res_a.design.gains.K_p, res_a.design.gains.K_phi, res_a.design.gains.K_Iphi,
-                         res_a.design.equivalent_delay],
-        "ours (C)": [res_c.design.gains.K_p, res_c.design.gains.K_phi, res_c.design.gains.K_Iphi,
-                     res_c.design.equivalent_delay],
-        "ours (D) robust": ([res_d.design.gains.K_p, res_d.design.gains.K_phi, res_d.design.gains.K_Iphi,
-                             res_d.design.equivalent_delay] if res_d is not None else [np.nan] * 4),
-        "dissertation (A)&(B)": [DISSERTATION_74[k][0] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")],
-        "dissertation (C)": [DISSERTATION_74[k][2] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")]})
+    def final_specs(res):
+        last = res.history[res.history.feasible].iloc[-1]
+        return default_specs(last.crossover_min, last.drb_min)
+
+    specs_by_key = {"A": final_specs(res_a), **{k: final_specs(r) for k, r in results.items()
+                                                 if k != "A" and r is not None}}
+    specs_d = final_specs(res_d) if res_d is not None else specs_by_key["ID"]
+    spec_set = lambda name: specs_d if name.startswith("(D)") else specs_by_key[specs_of[name]]  # noqa: E731
+
+    def gains(design):
+        return [design.gains.K_p, design.gains.K_phi, design.gains.K_Iphi, design.equivalent_delay]
+
+    t74 = pd.DataFrame({"parameter": ["K_p", "K_phi", "K_Iphi", "tau_eq"],
+                        "ours (A)&(B)": gains(res_a.design), f"ours (C) {labels['ID']}": gains(res_c.design),
+                        **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID6", "Eq. 5.3")
+                           if k in results and results[k] is not None},
+                        "ours (D) robust": gains(res_d.design) if res_d is not None else [np.nan] * 4,
+                        "dissertation (A)&(B)": [DISSERTATION_74[k][0] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")],
+                        "dissertation (C)": [DISSERTATION_74[k][2] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")]})
     rows = []
     for name, design in {**cases, **robust}.items():
-        k = "ABC".find(name[1])
+        k = column[name]
         ch = characteristics(design, spec_set(name))
-        rows.append({"case": name, **ch, **{f"dissertation {key}": (val[k] if k >= 0 else np.nan)
+        rows.append({"case": name, **ch, **{f"dissertation {key}": (val[k] if k is not None else np.nan)
                                             for key, val in DISSERTATION_75.items()}})
     t75 = pd.DataFrame(rows)
     # where the regressive flap (flap-body) modes sit with the loop closed, each tracked
-    # from its bare-airframe pole (issue: the dissertation's "min zeta 4-20 rad/s" is
-    # this mode; ours may sit just outside the band, and then the band minimum is the
+    # from its bare-airframe pole (the dissertation's "min zeta 4-20 rad/s" is this
+    # mode; ours may sit just outside the band, and then the band minimum is the
     # command model's 0.7)
     flap_rows = []
     for name, design in {**cases, **robust}.items():
-        bare_sys = sys_dc if name.endswith("on DC") else sys_12 if "12-state" in name else sys_id
-        bare = flap_mode_damping(bare_sys).reset_index(drop=True)
+        bare = flap_mode_damping(systems[bare_of[name]]).reset_index(drop=True)
         closed = flap_mode_damping(design.closed_loop(), reference=bare).reset_index(drop=True)
         for k in range(len(closed)):
             flap_rows.append({"case": name, "mode": closed.physics[k],
@@ -293,20 +337,23 @@ def main(argv=None):
     flap.to_csv(out / "flap_modes.csv", index=False)
     t74.to_csv(out / "table_7_4_gains.csv", index=False)
     t75.to_csv(out / "table_7_5_characteristics.csv", index=False)
-    pd.concat([res_a.history.assign(case="A"), res_c.history.assign(case="C")]
-              + ([res_d.history.assign(case="D")] if res_d is not None else [])) \
+    pd.concat([r.history.assign(case=("A" if k == "A" else f"C {labels[k]}")) for k, r in results.items()
+               if r is not None] + ([res_d.history.assign(case="D")] if res_d is not None else [])) \
         .to_csv(out / "dmo_history.csv", index=False)
-    for name, design in cases.items():
-        evaluate_specs(design, spec_set(name)).assign(case=name).to_csv(out / f"specs_{name[1]}.csv", index=False)
+    for old in out.glob("specs_*.csv"):
+        old.unlink()
+    spec_tables = [evaluate_specs(design, spec_set(name)).assign(case=name) for name, design in cases.items()]
+    pd.concat(spec_tables).to_csv(out / "specs.csv", index=False)
     if res_d is not None:
         res_d.specs.assign(case="(D) robust").to_csv(out / "specs_D.csv", index=False)
-    figures(cases, out)
-    hq_window(list(cases.values()), specs_a, labels=list(cases)).savefig(out / "hq_window.png", dpi=80)
+    main_cases = {name: cases[name] for name, _, _, col in rows_spec if col is not None}
+    figures(main_cases, out)
+    hq_window(list(cases.values()), specs_by_key["A"], labels=list(cases)).savefig(out / "hq_window.png", dpi=80)
     if robust:
         hq_window(list(robust.values()), specs_d, labels=list(robust_plants)).savefig(out / "hq_window_robust.png",
                                                                                       dpi=80)
 
-    fmt = lambda v: f"{v:.4g}"
+    fmt = lambda v: f"{v:.4g}"   # noqa: E731
     pd.set_option("display.width", 200)
     print("\n== Optimal controller parameters (cf. Table 7.4; stick units differ, compare trends) ==")
     print(t74.to_string(index=False, float_format=fmt))
@@ -314,16 +361,18 @@ def main(argv=None):
     ours = t75[["case", "crossover_rad_s", "GM_dB", "PM_deg", "min_zeta_4_20", "DRB_rad_s", "DRP_dB", "all_specs_met",
                 "most_limiting_spec"]]
     print(ours.to_string(index=False, float_format=fmt))
-    print("dissertation: " + "; ".join(f"{k} = {v}" for k, v in DISSERTATION_75.items()))
+    print("dissertation (A, B, C): " + "; ".join(f"{k} = {v}" for k, v in DISSERTATION_75.items()))
     print("\n== Regressive flap (flap-body) modes: bare airframe -> closed loop ==")
     print(flap[["case", "mode", "bare_frequency_rad_s", "bare_damping", "closed_loop_frequency_rad_s",
                 "closed_loop_damping", "in_band_4_20"]].to_string(index=False, float_format=fmt))
-    wc = t75.crossover_rad_s.values
-    print(f"\ncrossover gain from the identified-inflow design, (C)/(A): {wc[2] / wc[0]:.2f} "
-          f"(dissertation {DISSERTATION_75['crossover_rad_s'][2] / DISSERTATION_75['crossover_rad_s'][0]:.2f})")
+    wc = t75.set_index("case").crossover_rad_s
+    name_a, name_c = rows_spec[0][0], rows_spec[2][0]
+    print(f"\ncrossover gain from the identified-inflow design, (C)/(A), {labels['ID']}: "
+          f"{wc[name_c] / wc[name_a]:.2f} (dissertation "
+          f"{DISSERTATION_75['crossover_rad_s'][2] / DISSERTATION_75['crossover_rad_s'][0]:.2f})")
     if res_d is not None:
-        print(f"robustness cost, (D) over all plants vs (C): crossover {res_d.crossover:.3f} vs {wc[2]:.3f} rad/s "
-              f"({res_d.crossover / wc[2] - 1:+.1%})")
+        print(f"robustness cost, (D) over all plants vs (C): crossover {res_d.crossover:.3f} vs {wc[name_c]:.3f} rad/s "
+              f"({res_d.crossover / wc[name_c] - 1:+.1%})")
     else:
         print("robustness: no robust design (D) over " + ", ".join(robust_plants) + " at the starting boundaries")
     print(f"tables and figures in {out}/  (wall {time.perf_counter() - t_start:.0f} s)")

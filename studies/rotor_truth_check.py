@@ -56,12 +56,12 @@ CONTROLS = ["theta0_U", "theta1s_U", "theta1c_U", "theta0_L", "theta1s_L", "thet
 
 def _our_wake_model(trim_outputs, path="results/coaxial_wake_identification"):
     p = Path(path)
-    if not (p / "M_azimuth.csv").exists():
+    if not (p / "M_azimuth_6state.csv").exists():
         return None
     read = lambda n: pd.read_csv(p / n, index_col=0).to_numpy()   # noqa: E731
     o = trim_outputs
     return IdentifiedInflow.from_matrices(
-        read("M_azimuth.csv"), read("Lbar.csv"), read("tau_s.csv"), omega=coaxial_compound().rotors[0].omega,
+        read("M_azimuth_6state.csv"), read("Lbar_6state.csv"), read("tau_s_6state.csv"), omega=coaxial_compound().rotors[0].omega,
         loads_ref=np.array([o["CT_U"], 0, 0, o["CT_L"], 0, 0]),
         inflow_ref=np.array([o[k] for k in ("lam0_U", "lam1s_U", "lam1c_U", "lam0_L", "lam1s_L", "lam1c_L")]),
         name="identified from our free wake")

@@ -55,12 +55,12 @@ def test_every_study_command_names_a_study_with_a_main():
 
 def test_long_runs_say_so_and_how_long():
     out = _python("from studies import cli\n"
-                  "for argv in (['--identified', 'wake'], ['--out=/x', '--skip-identification']):\n"
+                  "for argv in (['--regenerate'], ['--out=/x', '--skip-identification']):\n"
                   "    minutes, folders, note = cli._plan(cli.STUDIES['main'], argv)\n"
                   "    print(minutes, *folders)")
     wake, skip = [line.split() for line in out.splitlines()]
     assert float(wake[0]) >= 10
-    assert wake[1:] == ["results/identification_demo", "results/hover_control_comparison_wake"]
+    assert wake[1:] == ["results/identification_demo", "results/hover_control_comparison"]
     assert skip[1:] == ["/x/hover_control_comparison"]
 
 

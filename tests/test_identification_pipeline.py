@@ -93,9 +93,14 @@ def test_settings_hash_tracks_what_changes_the_model():
 
 
 def test_pipeline_refuses_what_it_cannot_identify():
-    # flap-rate inputs need their own excitation: refused before any wake run
+    # flap-rate inputs need their own excitation: swashplate sweeps alone are refused
+    # before any wake run (the default excitations add the tip-path-plane sweeps)
+    swashplate = Coaxial12State().controls
     with pytest.raises(PipelineError, match="independent excitation"):
-        identify_inflow(coaxial_compound(), None, Coaxial12State(), ct=0.0096, cache_dir=None, progress=False)
+        identify_inflow(coaxial_compound(), None, Coaxial12State(), ct=0.0096, controls=swashplate,
+                        cache_dir=None, progress=False)
+    assert Coaxial12State().excitations == swashplate + ["beta1s_U", "beta1c_U", "beta1s_L", "beta1c_L"]
+    assert Coaxial6State().excitations == Coaxial6State().controls
     with pytest.raises(PipelineError, match="rotors"):
         identify_inflow(uh60_single_rotor(), None, Coaxial6State(), ct=CT, cache_dir=None, progress=False)
     with pytest.raises(PipelineError, match="ct"):

@@ -103,8 +103,8 @@ def test_shipped_coaxial_lateral_cross_couplings_have_the_signs_of_converted_eq5
     # our wake and the frame-converted printed model must agree on the signs of the
     # quasi-steady upper-on-lower cyclic couplings (the printed model, read in our
     # frames without conversion, has lam1s_L/CL_U of the wrong sign). The weaker
-    # lower-on-upper coupling lam1s_U/CL_L is not checked: the coarse shipped model
-    # gives +1.4 where converted Eq. 5.3 gives -3.4 (an open finding, see README).
+    # lower-on-upper coupling lam1s_U/CL_L is not checked: the coarse-wake model gave
+    # +1.4 and the default-resolution one -5.3 where converted Eq. 5.3 gives -3.4.
     rec = load_record("coaxial_hover_6state")
     ours = np.linalg.inv(rec.matrices["L"])
     conv = np.linalg.inv(in_rotor_frames(COAXIAL_HOVER_6STATE).L)
@@ -112,4 +112,5 @@ def test_shipped_coaxial_lateral_cross_couplings_have_the_signs_of_converted_eq5
     for i, j in ((4, 1), (5, 2)):      # lam1s_L/CL_U, lam1c_L/CM_U
         assert np.sign(ours[i, j]) == np.sign(conv[i, j]), (i, j)
     assert np.sign(ours[4, 1]) != np.sign(printed[4, 1])
-    assert rec.settings["settings"]["wake"]["n_elements"] == 6      # the coarse recipe (see regenerate.py)
+    from aircraft.wake import WakeSettings
+    assert rec.settings["settings"]["wake"]["n_elements"] == WakeSettings().n_elements   # default resolution

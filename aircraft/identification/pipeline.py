@@ -5,7 +5,8 @@
     wake trim ─► sweeps + doublet + zero-input run   (aircraft.wake.run_sweeps: parallel, cached)
       ─► chirp-z responses (lambda, C over theta) ─► joint input-output (lambda/C)
       ─► data-driven start (inverse of the low-frequency lambda/C)
-      ─► CIFER-cost fit ─► automatic reduction (Fig. 6.1)
+      ─► CIFER-cost fit (staged, §6.4.3, for structures with a plan: the
+         12-state model) ─► automatic reduction (Fig. 6.1)
       ─► verification on the doublet (not used in the fit), beside the wake's
          noise floor (the same TIC on a run with no input)
 
@@ -208,6 +209,11 @@ class IdentifiedModel:
     settings : IdentificationSettings
     settings_hash : str
     provenance : dict
+    hash_payload : dict
+        What the settings hash was computed from.
+    staged : flightid.StagedFitResult or None
+        The staged fit (§6.4.3) before the reduction, for structures with a
+        :meth:`~InflowStructure.staged_plan` (its ``.log`` lists the stages).
     """
 
     name: str
@@ -223,6 +229,7 @@ class IdentifiedModel:
     settings_hash: str
     provenance: dict = field(default_factory=dict)
     hash_payload: dict = field(default_factory=dict)
+    staged: object = None
 
     @property
     def cost_table(self) -> pd.DataFrame:
@@ -286,6 +293,8 @@ class IdentifiedModel:
             matrices = {"M": mats["M"], "L": mats["L"], "tau": mats["tau"]}
         else:   # F, G per d/dpsi in the structure: store seconds
             matrices = {"F": self.omega * mats["F"], "G": self.omega * mats["G"], "C": self.fit.structure.C}
+            if mats.get("tau") is not None and np.any(mats["tau"] > 0):
+                matrices["tau"] = mats["tau"]
         return ModelRecord(
             name=self.name, form=self.structure.form, rotors=self.structure.rotors, omega=self.omega,
             matrices=matrices, inputs=self.structure.inputs, outputs=self.structure.outputs,
@@ -336,7 +345,7 @@ def _verify(model, run, ref, inputs, outputs):
 
 def identify_inflow(config, condition=None, structure="single_rotor_3state", *, ct=None, trim=None,
                     settings=None, controls=None, name=None, n_jobs=2, cache_dir="default",
-                    progress=True):
+                    progress=True, scheduler=None):
     """Identify an inflow model of ``config`` from the free-vortex wake.
 
     Parameters
@@ -355,9 +364,10 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
         Full trim request for :func:`aircraft.wake.trim_wake` (overrides ``ct``).
     settings : IdentificationSettings, optional
     controls : list of str, optional
-        Controls to sweep (default ``structure.controls``; a model with flap-rate
-        inputs needs as many independent excitations as inputs, e.g. prescribed
-        tip-path-plane sweeps).
+        Controls to sweep, one record each (default ``structure.excitations``: the
+        swashplate controls, plus the prescribed tip-path-plane inputs of every
+        rotor for a structure with flap-rate inputs; the joint input-output needs
+        as many independent excitations as the model has inputs).
     name : str, optional
     n_jobs : int
         Wake worker processes.
@@ -365,6 +375,9 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
         Wake run cache folder; "default" is $ROTORWAKE_CACHE_DIR, else .cache/wake (see :func:`aircraft.wake.run_sweeps`).
     progress : bool
         tqdm progress over the stages, the wake runs and the reduction.
+    scheduler : str or dask.distributed.Client, optional
+        Where the wake runs execute (see :func:`aircraft.wake.run_sweeps`); None:
+        this machine (``n_jobs`` processes).
 
     Returns
     -------
@@ -377,7 +390,7 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     """
     from tqdm.auto import tqdm
     from aircraft.wake import FlightCondition, SweepSpec, run_sweeps
-    from flightid import fit, joint_input_output, reduce
+    from flightid import fit, fit_staged, joint_input_output, reduce
 
     t_start = time.perf_counter()
     settings = settings or IdentificationSettings()
@@ -388,7 +401,7 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     if len(rotor_names) != len(structure.rotors) or (len(rotor_names) > 1 and rotor_names != expected):
         raise PipelineError(f"structure {structure.key} is for rotors {structure.rotors}; "
                             f"the configuration has {rotor_names}")
-    controls = list(controls or structure.controls)
+    controls = list(controls or structure.excitations)
     if len(controls) < len(structure.inputs):
         raise PipelineError(f"{structure.key} has {len(structure.inputs)} inputs {structure.inputs} but only "
                             f"{len(controls)} excitations {controls}: the joint input-output needs at least one "
@@ -407,8 +420,9 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
                           label="zero_input")
     stages = tqdm(total=4, desc=f"identify {structure.key}", disable=not progress)
     stages.set_postfix_str("wake trim + runs")
+    where = {} if scheduler is None else {"scheduler": scheduler}
     runs = run_sweeps(config, s.wake_settings, condition, specs + [doublet_spec, zero_spec], trim=trim_req,
-                      n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
+                      n_jobs=n_jobs, cache_dir=cache_dir, progress=progress, **where)
     wake_trim = runs["trim"]
     if not wake_trim.converged:
         stages.close()
@@ -425,7 +439,16 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     stages.set_postfix_str("fit + reduce")
     omega = float(config.rotors[0].omega)
     flight_structure = structure.build(structure.initial_values(responses, s.start_points), omega)
-    fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min)
+    fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min,
+                      **structure.fit_options)
+    staged, plan = None, structure.staged_plan()
+    if plan:
+        # large structures are built up stage by stage (§6.4.3); the reduction then
+        # starts from the staged optimum with every parameter free, on the last
+        # stage's responses
+        staged = fit_staged(flight_structure, responses, plan, progress=progress, **fit_kwargs)
+        flight_structure = staged.result.structure.free(list(staged.result.structure.names))
+        fit_kwargs["pairs"] = list(zip(staged.result.cost_table.output, staged.result.cost_table.input))
     if s.reduce:
         reduction = reduce(flight_structure, responses, insensitivity_max=s.insensitivity_max,
                            cramer_rao_max=s.cramer_rao_max, protected=structure.protected,
@@ -449,4 +472,4 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     return IdentifiedModel(name=name or f"{structure.key} from the free wake", structure=structure,
                            fit=result, reduction=reduction, responses=responses, verification=check,
                            noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
-                           provenance=provenance, hash_payload=payload)
+                           provenance=provenance, hash_payload=payload, staged=staged)

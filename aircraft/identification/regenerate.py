@@ -12,7 +12,8 @@ Usage::
 
     python -m aircraft.identification.regenerate --list
     python -m aircraft.identification.regenerate uh60_hover_3state        # ~5 min on 2 cores
-    python -m aircraft.identification.regenerate coaxial_hover_6state     # coarse wake, ~3 min on 2 cores
+    python -m aircraft.identification.regenerate coaxial_hover_6state     # ~25 min on 2 cores (wake runs)
+    python -m aircraft.identification.regenerate coaxial_hover_12state    # ~40 min, or the fit only once cached
     python -m aircraft.identification.regenerate --published              # the printed models
     python -m aircraft.identification.regenerate --check                  # which files are stale
 """
@@ -25,12 +26,6 @@ from .pipeline import IdentificationSettings, identification_hash, identify_infl
 from .store import ModelRecord, load_record, settings_hash, shipped_model_path, shipped_models
 
 __all__ = ["Recipe", "RECIPES", "PUBLISHED_FILES", "published_record", "regenerate", "stale_models", "main"]
-
-
-def _coarse_wake():
-    import math
-    from aircraft.wake import WakeSettings
-    return WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 
 
 @dataclass(frozen=True)
@@ -60,16 +55,20 @@ RECIPES = {
         "UH-60-like single rotor, hover, C_T 0.0061: 3-state M/Lbar/tau (Tables 4.1-4.2 form) "
         "identified from our free-vortex wake"),
     # total of the dissertation's split (0.0053 + 0.0043, §5.4), shared equally, torques
-    # balanced. COARSE wake (15 deg, 2 revs, 6 elements, the study's --coarse): the
-    # default resolution needs ~8 min of 2 idle cores, which the shared machine of
-    # this session could not give; regenerate at the default once the wake changes
-    # of issue 9 (item 1) are merged.
+    # balanced; default wake resolution. Both coaxial models come from one data set
+    # (the 6-state uses its six swashplate sweeps, the 12-state adds the four
+    # tip-path-plane sweeps), so regenerating both costs the 12-state's wake runs.
     "coaxial_hover_6state": Recipe(
         "coaxial_compound", "coaxial_6state", 0.0053 + 0.0043,
         "Coaxial compound (Table B.1), hover, system C_T 0.0096: 6-state M/Lbar/tau (Eq. 5.3 "
-        "structure, our rotor frames) identified from our free-vortex wake at a COARSE resolution "
-        "(15 deg steps, 2 revolutions, 6 elements)",
-        IdentificationSettings(wake=_coarse_wake())),
+        "structure, our rotor frames) identified from our free-vortex wake (default resolution)"),
+    "coaxial_hover_12state": Recipe(
+        "coaxial_compound", "coaxial_12state_delays", 0.0053 + 0.0043,
+        "Coaxial compound (Table B.1), hover, system C_T 0.0096: 12-state near/far-wake F/G/C model "
+        "with flap-rate inputs (Eqs. 6.2-6.3 structure plus the 6-state's lambda/C delays, our rotor "
+        "frames), fitted in stages (§6.4.3) "
+        "from six swashplate and four prescribed tip-path-plane sweeps of our free-vortex wake "
+        "(default resolution)"),
 }
 
 #: Printed models shipped as files (converted to our rotor frames), by file name.

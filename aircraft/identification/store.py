@@ -154,7 +154,8 @@ class ModelRecord:
                                                   time=self.time, pade_order=pade_order or self.pade_order, **kw)
         if self.form == "fgc":
             return IdentifiedInflow.from_fgc(m["F"], m["G"], m["C"], rotors=self.rotors,
-                                             input_order=self.inputs, **kw)
+                                             input_order=self.inputs, tau=m.get("tau"),
+                                             pade_order=pade_order or self.pade_order, **kw)
         sys = control.ss(m["A"], m["B"], m["C"], np.zeros((m["C"].shape[0], m["B"].shape[1])),
                          inputs=self.inputs, outputs=self.outputs)
         return IdentifiedInflow(sys, self.rotors, **kw)

@@ -100,22 +100,28 @@ def mltau_statespace(M, L, tau=None, *, omega, time="azimuth", pade_order=2,
                  for j in range(n)]
         sys = control.minreal(control.series(control.append(*pades), h), tol=1e-9, verbose=False)
     else:
-        # column by column: H[:, j], then each output through its own delay
-        cols = []
-        for j in range(n):
-            hj = control.ss(h.A, h.B[:, [j]], h.C, h.D[:, [j]])
-            delays = [_pade_ss(tau[i, j], pade_order) if tau[i, j] > 0 else control.ss([], [], [], [[1.0]])
-                      for i in range(n)]
-            cols.append(control.series(hj, control.append(*delays)))
-        sys = cols[0]
-        for c in cols[1:]:
-            sys = control.append(sys, c)
-        # sum the per-column outputs: y = sum_j y^(j)
-        summer = np.hstack([np.eye(n)] * n)
-        sys = control.ss(sys.A, sys.B, summer @ sys.C, summer @ sys.D)
-        sys = control.minreal(sys, tol=1e-9, verbose=False)
+        sys = _pairwise_delays(h, tau, pade_order)
     return control.ss(sys.A, sys.B, sys.C, np.zeros((n, n)), inputs=inputs, outputs=outputs,
                       states=[f"inflow_x{k}" for k in range(sys.nstates)], name=_sysname(name))
+
+
+def _pairwise_delays(h, tau, pade_order):
+    """``H_ij(s) exp(-s tau_ij)`` realised: column by column, ``H[:, j]`` then each
+    output through its own Padé delay, outputs summed, then a minimal realisation."""
+    n_out, n_in = h.noutputs, h.ninputs
+    cols = []
+    for j in range(n_in):
+        hj = control.ss(h.A, h.B[:, [j]], h.C, h.D[:, [j]])
+        delays = [_pade_ss(tau[i, j], pade_order) if tau[i, j] > 0 else control.ss([], [], [], [[1.0]])
+                  for i in range(n_out)]
+        cols.append(control.series(hj, control.append(*delays)))
+    sys = cols[0]
+    for c in cols[1:]:
+        sys = control.append(sys, c)
+    # sum the per-column outputs: y = sum_j y^(j)
+    summer = np.hstack([np.eye(n_out)] * n_in)
+    sys = control.ss(sys.A, sys.B, summer @ sys.C, summer @ sys.D)
+    return control.minreal(sys, tol=1e-9, verbose=False)
 
 
 class IdentifiedInflow(InflowModel):
@@ -232,7 +238,7 @@ class IdentifiedInflow(InflowModel):
 
     @classmethod
     def from_fgc(cls, F, G, C=None, *, rotors=("U", "L"), input_order=None, loads_ref=None,
-                 inflow_ref=None, name="identified F/G/C"):
+                 inflow_ref=None, name="identified F/G/C", tau=None, pade_order=2):
         """From the near/far-wake form ``x' = F x + G u``, ``lambda = C x`` (Eqs. 6.2-6.5).
 
         Parameters
@@ -246,6 +252,15 @@ class IdentifiedInflow(InflowModel):
             Names of G's columns, in any order (e.g. Eq. 6.2's
             ``CT_U, CL_U, beta1s_dot_U, CM_U, beta1c_dot_U, …``); they are
             permuted to the canonical order. Default: the canonical load names.
+        loads_ref, inflow_ref : array_like, optional
+            Trim loads and inflow (see the class).
+        name : str
+        tau : (3 * n_rotors, m) array_like, optional
+            Delay [s] of input column j on inflow output i (columns in ``input_order``):
+            ``lambda_i = sum_j [C (sI - F)^-1 G]_ij exp(-s tau_ij) u_j``, realised by
+            Padé approximants of ``pade_order``.
+        pade_order : int
+            Order of each delay's Padé approximant.
         """
         rotors = tuple(rotors)
         F, G = np.asarray(F, float), np.asarray(G, float)
@@ -272,6 +287,17 @@ class IdentifiedInflow(InflowModel):
         Gc = G[:, [order.index(c) for c in canonical]]
         sys = control.ss(F, Gc, C, np.zeros((C.shape[0], Gc.shape[1])), inputs=canonical,
                          outputs=inflow_names(rotors), states=states, name=_sysname(name))
+        if tau is not None:
+            tau = np.asarray(tau, float)
+            if tau.shape != (C.shape[0], G.shape[1]) or not np.all(np.isfinite(tau)) or np.any(tau < 0):
+                raise InflowError(f"tau must be a ({C.shape[0]}, {G.shape[1]}) array of finite non-negative "
+                                  f"delays [s], got shape {tau.shape}")
+            tau = tau[:, [order.index(c) for c in canonical]]
+            if np.any(tau > 0):
+                sys = _pairwise_delays(sys, tau, pade_order)
+                sys = control.ss(sys.A, sys.B, sys.C, np.zeros((C.shape[0], Gc.shape[1])), inputs=canonical,
+                                 outputs=inflow_names(rotors), states=[f"inflow_x{k}" for k in range(sys.nstates)],
+                                 name=_sysname(name))
         return cls(sys, rotors, loads_ref, inflow_ref, name)
 
     @classmethod
