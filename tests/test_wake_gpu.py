@@ -130,6 +130,7 @@ _SIMULATOR_SCRIPT = textwrap.dedent("""
     os.environ[gpu.SIMULATOR_ENV] = "1"
     importlib.reload(gpu)
     facts["explicit_available"] = gpu.available()
+    facts["explicit_reason"] = gpu.unavailable_reason()
     facts["explicit_gpu"] = biot_savart.set_kernel_backend("gpu")
     facts["explicit_auto"] = biot_savart.set_kernel_backend("auto")
     out["dispatched"] = biot_savart.segment_velocity(*args, precision="double")
@@ -153,8 +154,10 @@ def test_kernel_under_cuda_simulator_matches_cpu_kernel(tmp_path, cpu_backend):
     assert facts["simulated"] and not facts["available"]
     assert "simulator" in facts["reason"] and facts["auto"] == "cpu"
     assert facts["gpu_error"] is not None and "no CUDA device is usable" in facts["gpu_error"]
-    # ... unless asked for explicitly
-    assert facts["explicit_available"] and facts["explicit_gpu"] == "gpu" and facts["explicit_auto"] == "gpu"
+    # ... unless asked for explicitly (after the same self-check a device gets)
+    assert facts["explicit_available"], facts["explicit_reason"]
+    assert "explicitly enabled" in facts["explicit_reason"]
+    assert facts["explicit_gpu"] == "gpu" and facts["explicit_auto"] == "gpu"
     out = np.load(tmp_path / "out.npz")
     for precision, rel in (("single", SINGLE_ATOL), ("double", DOUBLE_ATOL)):
         ref = segment_velocity(tg, a, b, g, rc, precision)

@@ -32,12 +32,13 @@ an unsupported device) makes it False, with the reason in
 :func:`unavailable_reason`; the result is cached for the process.
 
 numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``, set before numba is imported)
-runs the same kernel source in Python threads. It is not a device: under it
-:func:`available` is False, so the ``"auto"`` backend stays on the CPU, unless
-``ROTORWAKE_GPU_SIMULATOR=1`` (:data:`SIMULATOR_ENV`) asks for it explicitly.
-:func:`segment_velocity` itself runs under the simulator either way (that is how
-CI checks the kernel). The simulator evaluates ``math.sqrt`` in double precision,
-so its ``"single"`` results are not float32-faithful; its ``"double"`` results are.
+runs the same kernel source in Python threads, with numpy scalars and without
+fused multiply-adds. It is not a device: under it :func:`available` is False, so
+the ``"auto"`` backend stays on the CPU, unless ``ROTORWAKE_GPU_SIMULATOR=1``
+(:data:`SIMULATOR_ENV`) asks for it explicitly (then the same self-check runs on
+it). :func:`segment_velocity` itself runs under the simulator either way: that is
+how CI checks the kernel without a device. The simulator is far too slow for a
+wake march (~500 pairs/s).
 """
 from __future__ import annotations
 
@@ -73,7 +74,8 @@ _TINY = 1e-12            # as in the CPU kernel
 _PRECISIONS = {"double": np.float64, "single": np.float32}
 _N_FIELDS = 11           # packed segment record: A, B, r0 (3 each), Gamma/4pi, (rc |r0|)^4
 
-_lock = threading.Lock()
+_probe_lock = threading.Lock()    # two locks: the probe launches the kernel
+_launch_lock = threading.Lock()
 _probe_result = None     # (available, reason), set once by available()
 _buffers = {}            # dtype -> {"tg": dev (mcap, 3), "seg": dev (ncap, 11), "out": dev (mcap, 3)}
 
@@ -141,35 +143,39 @@ if cuda is not None:
         out[i, 2] = uz
 
 
+def _self_check(where):
+    """(usable, reason) after compiling and running the kernel once on ``where``."""
+    # a device without a working toolkit (NVVM, libdevice) must fall back here,
+    # not in the middle of a march
+    from .biot_savart import segment_velocity_numpy
+    rng = np.random.default_rng(0)
+    tg = rng.normal(size=(5, 3))
+    a = rng.normal(size=(7, 3))
+    b = a + 0.3 * rng.normal(size=(7, 3))
+    g = rng.normal(size=7)
+    rc = np.full(7, 0.05)
+    got = _launch(tg, a, b, g, rc, np.float64)
+    want = segment_velocity_numpy(tg, a, b, g, rc)
+    # double precision, 7 terms per sum: agreement to 1e-9 of max |v| or the
+    # device computes something else
+    if not np.allclose(got, want, rtol=0.0, atol=1e-9 * np.abs(want).max()):
+        return False, f"the CUDA kernel on {where} disagrees with the CPU reference"
+    return True, where
+
+
 def _probe():
     """(usable, reason) of the CUDA backend in this process."""
     if cuda is None:
         return False, _IMPORT_ERROR
-    if simulated():
-        if os.environ.get(SIMULATOR_ENV, "").strip() == "1":
-            return True, f"numba CUDA simulator, explicitly enabled by {SIMULATOR_ENV}=1"
-        return False, ("numba's CUDA simulator is active (NUMBA_ENABLE_CUDASIM=1); it is not a "
-                       f"device (set {SIMULATOR_ENV}=1 to use it explicitly)")
     try:
+        if simulated():
+            if os.environ.get(SIMULATOR_ENV, "").strip() != "1":
+                return False, ("numba's CUDA simulator is active (NUMBA_ENABLE_CUDASIM=1); it is "
+                               f"not a device (set {SIMULATOR_ENV}=1 to use it explicitly)")
+            return _self_check(f"numba CUDA simulator, explicitly enabled by {SIMULATOR_ENV}=1")
         if not cuda.is_available():
             return False, "no usable CUDA driver or device (numba.cuda.is_available() is False)"
-        name = _device_name()
-        # compile, run and check the kernel once: a device without a working
-        # toolkit (NVVM, libdevice) must fall back here, not in the middle of a march
-        from .biot_savart import segment_velocity_numpy
-        rng = np.random.default_rng(0)
-        tg = rng.normal(size=(5, 3))
-        a = rng.normal(size=(7, 3))
-        b = a + 0.3 * rng.normal(size=(7, 3))
-        g = rng.normal(size=7)
-        rc = np.full(7, 0.05)
-        got = _launch(tg, a, b, g, rc, np.float64)
-        want = segment_velocity_numpy(tg, a, b, g, rc)
-        # double precision, 7 terms per sum: agreement to 1e-9 of max |v| or the
-        # device computes something else
-        if not np.allclose(got, want, rtol=0.0, atol=1e-9 * np.abs(want).max()):
-            return False, f"CUDA kernel on {name} disagrees with the CPU reference"
-        return True, f"CUDA device {name}"
+        return _self_check(f"CUDA device {_device_name()}")
     except Exception as exc:   # any driver/toolkit/compile error: not usable
         return False, f"CUDA device not usable ({type(exc).__name__}: {exc})"
 
@@ -188,7 +194,7 @@ def available():
     """
     global _probe_result
     if _probe_result is None:
-        with _lock:
+        with _probe_lock:
             if _probe_result is None:
                 _probe_result = _probe()
     return _probe_result[0]
@@ -248,7 +254,7 @@ def _launch(targets, seg_a, seg_b, gamma, rc, dtype):
     seg[:, 9] = gamma / _FOUR_PI
     seg[:, 10] = rcl * rcl
     tg = np.ascontiguousarray(targets, dtype=dtype)
-    with _lock:
+    with _launch_lock:
         d_tg = _buffer(dtype, "tg", m, 3)
         d_seg = _buffer(dtype, "seg", n, _N_FIELDS)
         d_out = _buffer(dtype, "out", m, 3)
