@@ -5,8 +5,20 @@ in double and single precision and of the plain numpy version (same inputs) with
 their ratios; the wall time of one coaxial revolution at the default resolution
 (10 deg steps, 4 + 1 revolutions of wake, 10 elements) measured on all cores and
 on one (the sweep workers run one kernel thread each); and the projected wall time
-of the six-sweep coaxial hover identification set on 2 cores.
+of the six-sweep coaxial hover identification set on 2 cores. The CPU figures
+always use the CPU kernel (also on a machine with a GPU).
+
+Then the GPU figures when :func:`aircraft.wake.gpu.available` (else it prints
+"GPU: no device" and why): the agreement of the GPU kernel with the CPU kernel,
+its pair rate (array in, array out: transfers included) at the benchmark size and
+at a size that fills the device, and the wall time of the same coaxial revolution
+with the GPU kernel against the CPU kernel on 2 threads (the 2-core machine the
+projection is for), the rest of the march on 2 host threads in both.
+
+Options: ``--gpu-only`` runs only the GPU part (and the 2-thread CPU revolution
+it is compared with).
 """
+import argparse
 import math
 import os
 import time
@@ -15,8 +27,9 @@ import numba
 import numpy as np
 
 from aircraft.configs import coaxial_compound
-from aircraft.wake import (FreeVortexWake, WakeSettings, segment_velocity,
+from aircraft.wake import (FreeVortexWake, WakeSettings, gpu, segment_velocity,
                            segment_velocity_numpy)
+from aircraft.wake.biot_savart import set_kernel_backend
 
 
 def pair_rates(m=1500, n=1800, seed=0):
@@ -53,7 +66,71 @@ def revolution_time(threads):
     return time.perf_counter() - t0, s, w
 
 
-def main():
+def _inputs(m, n, seed=0):
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(n, 3))
+    return (rng.normal(size=(m, 3)), a, a + 0.1 * rng.normal(size=(n, 3)), rng.normal(size=n),
+            np.full(n, 0.05))
+
+
+def gpu_pair_rate(m, n, precision, min_time=1.0):
+    """Pairs/s of the GPU kernel, array in / array out (host-device copies included)."""
+    args = _inputs(m, n)
+    gpu.segment_velocity(*args, precision=precision)               # compile / load cache
+    reps, t0 = 0, time.perf_counter()
+    while reps < 3 or time.perf_counter() - t0 < min_time:
+        gpu.segment_velocity(*args, precision=precision)
+        reps += 1
+    return reps * m * n / (time.perf_counter() - t0)
+
+
+def gpu_agreement(m=1500, n=1800):
+    """Max |GPU - CPU| / max |CPU| of the kernel, per precision (CPU kernel selected)."""
+    args = _inputs(m, n, seed=1)
+    out = {}
+    for precision in ("double", "single"):
+        ref = segment_velocity(*args, precision)
+        out[precision] = float(np.abs(gpu.segment_velocity(*args, precision=precision) - ref).max()
+                               / np.abs(ref).max())
+    return out
+
+
+def gpu_main():
+    """Print the GPU figures, or that there is no device."""
+    if not gpu.available():
+        print(f"GPU: no device ({gpu.unavailable_reason()})")
+        return
+    set_kernel_backend("cpu")
+    print(f"GPU: {gpu.device_name()}")
+    agree = gpu_agreement()
+    print(f"GPU kernel vs CPU kernel, max |dv| / max |v| (1500 x 1800 pairs): double "
+          f"{agree['double']:.1e}, single {agree['single']:.1e} (target <= 1e-5)")
+    for m, n in ((1500, 1800), (20000, 20000)):
+        r = {p: gpu_pair_rate(m, n, p) for p in ("double", "single")}
+        print(f"GPU Biot-Savart pairs/s at {m} x {n} (copies included): double {r['double']:.3e}, "
+              f"single {r['single']:.3e}")
+    threads = min(2, numba.config.NUMBA_NUM_THREADS)
+    t_cpu, s, _ = revolution_time(threads)
+    set_kernel_backend("gpu")
+    try:
+        t_gpu, _, _ = revolution_time(threads)
+    finally:
+        set_kernel_backend("cpu")
+        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    print(f"coaxial revolution, {math.degrees(s.azimuth_step):g} deg steps, {s.kernel_precision} "
+          f"kernel, host on {threads} threads: GPU kernel {t_gpu:.2f} s, CPU kernel {t_cpu:.2f} s "
+          f"({t_cpu / t_gpu:.1f}x)")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--gpu-only", action="store_true",
+                        help="only the GPU figures (and the 2-thread CPU revolution they are compared with)")
+    args = parser.parse_args(argv)
+    if args.gpu_only:
+        gpu_main()
+        return
+    set_kernel_backend("cpu")                      # the CPU figures are the CPU kernel's
     cores = os.cpu_count() or 2
     print(f"cores visible: {cores} (shared machine: timings include other load)")
     r = pair_rates()
@@ -75,6 +152,7 @@ def main():
     print(f"projected six-sweep coaxial hover set (6 x {sweep_s:.0f} s records = {revs:.0f} revs "
           f"each, {workers} workers x 1 thread, + {trim_revs}-rev trim): {t_proj / 60:.1f} min "
           f"(target < 10 min)")
+    gpu_main()
 
 
 if __name__ == "__main__":
