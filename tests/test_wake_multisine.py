@@ -51,8 +51,8 @@ def test_multisine_spec_band_too_narrow_for_its_controls():
 
 
 def test_run_sweeps_checks_every_control_of_a_multisine():
-    spec = MultisineSpec(("theta0", "theta9"), duration=1.0, w_min=10.0, w_max=60.0)
-    with pytest.raises(SweepSpecError, match=r"unknown control\(s\) \['theta9'\]"):
+    spec = MultisineSpec(("theta0", "theta9", "theta8"), duration=1.0, w_min=10.0, w_max=60.0)
+    with pytest.raises(SweepSpecError, match=r"unknown controls \['theta9', 'theta8'\]"):
         run_sweeps(uh60_single_rotor(), WakeSettings(), FlightCondition(), [spec], trim={"ct": 0.0061},
                    n_jobs=1, cache_dir=None, progress=False)
 

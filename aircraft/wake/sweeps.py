@@ -417,7 +417,8 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
             raise SweepSpecError(f"specs[{k}] must be a SweepSpec or MultisineSpec, got {type(s).__name__}")
         unknown = [c for c in s.controls if c not in controls]
         if unknown:
-            raise SweepSpecError(f"{type(s).__name__} {s.name!r}: unknown control(s) {unknown}; "
+            what = f"control {unknown[0]!r}" if len(unknown) == 1 else f"controls {unknown}"
+            raise SweepSpecError(f"{type(s).__name__} {s.name!r}: unknown {what}; "
                                  f"this configuration has {controls}")
     names = [s.name for s in specs]
     if len(set(names)) != len(names):
