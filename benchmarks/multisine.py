@@ -89,7 +89,7 @@ def run(duration, out, n_jobs, amplitude):
     revs_b = revs["multisine_6controls"]
     shared = revs["doublet_theta0_U"] + revs["zero_input"]
     ratio = revs_b / revs_a
-    print(f"\nwall time (shared cache {'' if wall_a else ''}may hold runs): six sweeps {wall_a:.0f} s, "
+    print(f"\nwall time (runs already in the wake cache cost nothing): six sweeps {wall_a:.0f} s, "
           f"multisine {wall_b:.0f} s")
     print(f"excitation: {model_b.provenance['excitation']}")
     print(f"\nwake revolutions of the identification records: six sweeps {revs_a:.0f}, one multisine "
