@@ -6,9 +6,11 @@ a flight-test record or a wind-tunnel record.
 ::
 
     frequency_sweep / doublet / multistep_3211          (test inputs)
+    orthogonal_multisine                                (all inputs in one record)
               │ time histories t, u, y
               ▼
     frequency_response ─► MeasuredResponse (FRD + coherence)   chirp-z, composite windows
+    mimo_response / harmonic_response ─► MIMOResponse           simultaneous inputs (G_yu G_uu^-1)
               │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
               ▼
     MLTauStructure / FGCStructure / GainDelayStructure  (free / fixed / tied parameters)
@@ -24,6 +26,8 @@ from .errors import (DataError, IdentificationError, InputValueError, SignalName
 from .sweeps import doublet, frequency_sweep, multistep_3211, shaped_noise
 from .response import MeasuredResponse, combine_responses, frequency_response
 from .joint import joint_input_output
+from .multisine import Multisine, orthogonal_multisine, relative_peak_factor
+from .mimo import MIMOResponse, harmonic_response, mimo_response
 from .structures import FGCStructure, GainDelayStructure, MLTauStructure, ModelStructure
 from .fitting import COHERENCE_FLOOR, FitResult, cifer_cost, coherence_weight, fit
 from .degeneracy import DegeneracyReport, MultiStartReport, NoInformationError
@@ -37,6 +41,8 @@ __all__ = [
     "doublet", "frequency_sweep", "multistep_3211", "shaped_noise",
     "MeasuredResponse", "combine_responses", "frequency_response",
     "joint_input_output",
+    "Multisine", "orthogonal_multisine", "relative_peak_factor",
+    "MIMOResponse", "harmonic_response", "mimo_response",
     "FGCStructure", "GainDelayStructure", "MLTauStructure", "ModelStructure",
     "COHERENCE_FLOOR", "FitResult", "cifer_cost", "coherence_weight", "fit",
     "DegeneracyReport", "MultiStartReport", "NoInformationError",

@@ -190,6 +190,61 @@ def _window_spectra(x, ys, dt, t_win, overlap, w_lo, w_hi, n_lin):
     return omega_lin, gxx, gyy, gxy, len(starts)
 
 
+def _frequency_plan(t, dt, *, w_min, w_max, n_points, points_per_decade, windows, n_windows,
+                    max_window, min_window, cycles_per_window):
+    """Checked log frequency grid [rad/s] and composite window lengths [s] of a record.
+
+    Shared by :func:`frequency_response` and :func:`flightid.mimo_response`;
+    raises InputValueError / DataError for a band or windows the record ``t`` [s]
+    (step ``dt`` [s]) cannot resolve. Returns ``(omega, windows)``.
+    """
+    w_min = real_scalar("w_min", w_min, positive=True, unit="rad/s")
+    w_max = real_scalar("w_max", w_max, positive=True, unit="rad/s")
+    if not w_min < w_max:
+        raise InputValueError(f"need 0 < w_min < w_max [rad/s], got w_min={w_min}, w_max={w_max}")
+    points_per_decade = real_scalar("points_per_decade", points_per_decade, positive=True)
+    n_windows = integer("n_windows", n_windows, minimum=1)
+    if n_points is not None:
+        n_points = integer("n_points", n_points, minimum=2)
+    if max_window is not None:
+        max_window = real_scalar("max_window", max_window, positive=True, unit="s")
+    if min_window is not None:
+        min_window = real_scalar("min_window", min_window, positive=True, unit="s")
+    nyquist = np.pi / dt
+    if w_max > 0.5 * nyquist:
+        raise DataError(f"w_max = {w_max:.4g} rad/s is above half the Nyquist frequency "
+                        f"({0.5 * nyquist:.4g} rad/s) for dt = {dt:.4g} s")
+    record = t[-1] - t[0]
+    if windows is not None:
+        windows = np.sort(np.atleast_1d(real_array("windows", windows, error=InputValueError)))[::-1]
+        if windows.size == 0 or windows.ndim != 1 or np.any(windows <= 0):
+            raise InputValueError("windows must be a non-empty 1-D sequence of positive lengths [s]")
+        if windows[-1] < 32 * dt:
+            raise DataError(f"window of {windows[-1]:.4g} s holds fewer than 32 samples (dt = {dt:.4g} s)")
+        max_window = windows[0]
+    t_max = record / 2.0 if max_window is None else float(max_window)
+    if t_max > record:
+        raise DataError(f"the longest window ({t_max:.4g} s) is longer than the record ({record:.4g} s)")
+    lowest = cycles_per_window * 2 * np.pi / t_max
+    if w_min < lowest * (1 - 1e-9) and windows is not None:
+        raise DataError(f"the longest window ({t_max:.4g} s) resolves only down to {lowest:.4g} "
+                        f"rad/s, above w_min = {w_min:.4g} rad/s: add a window of >= "
+                        f"{cycles_per_window * 2 * np.pi / w_min:.4g} s")
+    if w_min < lowest * (1 - 1e-9):
+        need = cycles_per_window * 2 * np.pi / w_min * record / t_max
+        raise DataError(f"record of {record:.4g} s is too short for w_min = {w_min:.4g} rad/s: "
+                        f"the longest window ({t_max:.4g} s) resolves only down to "
+                        f"{lowest:.4g} rad/s; a record of >= {need:.4g} s is needed")
+    if windows is None:
+        t_min = t_max / 8.0 if min_window is None else float(min_window)
+        t_min = max(t_min, 32 * dt)
+        windows = np.geomspace(t_max, t_min, n_windows) if n_windows > 1 else np.array([t_max])
+    if n_points is None:
+        n_points = int(np.ceil(points_per_decade * np.log10(w_max / w_min))) + 1
+    omega = np.geomspace(w_min, w_max, n_points)
+    return omega, windows
+
+
 def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decade=25,
                        windows=None, n_windows=5, max_window=None, min_window=None, overlap=0.8,
                        cycles_per_window=2.0, input_name="u", output_names=None, name=None):
@@ -236,54 +291,15 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
     closed-form stand-in for CIFER's optimised composite (Tischler & Remple §7.8).
     """
     t, u, y, dt = _validate(t, u, y)
-    w_min = real_scalar("w_min", w_min, positive=True, unit="rad/s")
-    w_max = real_scalar("w_max", w_max, positive=True, unit="rad/s")
-    if not w_min < w_max:
-        raise InputValueError(f"need 0 < w_min < w_max [rad/s], got w_min={w_min}, w_max={w_max}")
     overlap = real_scalar("overlap", overlap, lo=0.0, hi=1.0, hi_open=True)
     cycles_per_window = real_scalar("cycles_per_window", cycles_per_window, positive=True)
-    points_per_decade = real_scalar("points_per_decade", points_per_decade, positive=True)
-    n_windows = integer("n_windows", n_windows, minimum=1)
-    if n_points is not None:
-        n_points = integer("n_points", n_points, minimum=2)
-    if max_window is not None:
-        max_window = real_scalar("max_window", max_window, positive=True, unit="s")
-    if min_window is not None:
-        min_window = real_scalar("min_window", min_window, positive=True, unit="s")
+    omega, windows = _frequency_plan(t, dt, w_min=w_min, w_max=w_max, n_points=n_points,
+                                     points_per_decade=points_per_decade, windows=windows,
+                                     n_windows=n_windows, max_window=max_window, min_window=min_window,
+                                     cycles_per_window=cycles_per_window)
+    w_max, n_points = omega[-1], omega.size
     if not isinstance(input_name, str) or not input_name:
         raise InputValueError(f"input_name must be a non-empty string, got {input_name!r}")
-    nyquist = np.pi / dt
-    if w_max > 0.5 * nyquist:
-        raise DataError(f"w_max = {w_max:.4g} rad/s is above half the Nyquist frequency "
-                        f"({0.5 * nyquist:.4g} rad/s) for dt = {dt:.4g} s")
-    record = t[-1] - t[0]
-    if windows is not None:
-        windows = np.sort(np.atleast_1d(real_array("windows", windows, error=InputValueError)))[::-1]
-        if windows.size == 0 or windows.ndim != 1 or np.any(windows <= 0):
-            raise InputValueError("windows must be a non-empty 1-D sequence of positive lengths [s]")
-        if windows[-1] < 32 * dt:
-            raise DataError(f"window of {windows[-1]:.4g} s holds fewer than 32 samples (dt = {dt:.4g} s)")
-        max_window = windows[0]
-    t_max = record / 2.0 if max_window is None else float(max_window)
-    if t_max > record:
-        raise DataError(f"the longest window ({t_max:.4g} s) is longer than the record ({record:.4g} s)")
-    lowest = cycles_per_window * 2 * np.pi / t_max
-    if w_min < lowest * (1 - 1e-9) and windows is not None:
-        raise DataError(f"the longest window ({t_max:.4g} s) resolves only down to {lowest:.4g} "
-                        f"rad/s, above w_min = {w_min:.4g} rad/s: add a window of >= "
-                        f"{cycles_per_window * 2 * np.pi / w_min:.4g} s")
-    if w_min < lowest * (1 - 1e-9):
-        need = cycles_per_window * 2 * np.pi / w_min * record / t_max
-        raise DataError(f"record of {record:.4g} s is too short for w_min = {w_min:.4g} rad/s: "
-                        f"the longest window ({t_max:.4g} s) resolves only down to "
-                        f"{lowest:.4g} rad/s; a record of >= {need:.4g} s is needed")
-    if windows is None:
-        t_min = t_max / 8.0 if min_window is None else float(min_window)
-        t_min = max(t_min, 32 * dt)
-        windows = np.geomspace(t_max, t_min, n_windows) if n_windows > 1 else np.array([t_max])
-    if n_points is None:
-        n_points = int(np.ceil(points_per_decade * np.log10(w_max / w_min))) + 1
-    omega = np.geomspace(w_min, w_max, n_points)
     n_out = y.shape[1]
     if output_names is None:
         output_names = ["y"] if n_out == 1 else [f"y{k}" for k in range(n_out)]

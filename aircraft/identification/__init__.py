@@ -7,6 +7,8 @@
     frames.py      conversion between the dissertation's common frame and our rotor frames
     pipeline.py    identify_inflow: trim -> sweeps -> responses -> joint input-output
                    -> fit -> reduce -> verify; IdentifiedModel
+    multisine.py   identify_inflow_multisine: the same from ONE orthogonal-multisine record of
+                   all swashplate controls (mimo_response), recommendation 6
     store.py       versioned model files (aircraft/data/models/*.json), ModelRecord
     regenerate.py  recipes of the shipped models; ``python -m aircraft.identification.regenerate``
     synthetic.py   synthetic-truth data generated with scipy (independent of flightid)
@@ -19,9 +21,11 @@ from .structures import (STRUCTURES, Coaxial6State, Coaxial12State, InflowStruct
 from .store import SCHEMA, ModelFileError, ModelRecord, load_record, shipped_models
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
                        identification_hash, identify_inflow)
+from .multisine import MultisineSettings, identify_inflow_multisine, record_revolutions
 
 __all__ = ["COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
            "STRUCTURES", "Coaxial6State", "Coaxial12State", "InflowStructure", "SingleRotor3State",
            "get_structure", "SCHEMA", "ModelFileError", "ModelRecord", "load_record", "shipped_models",
            "PIPELINE_VERSION", "IdentificationSettings", "IdentifiedModel", "PipelineError",
-           "identification_hash", "identify_inflow"]
+           "identification_hash", "identify_inflow",
+           "MultisineSettings", "identify_inflow_multisine", "record_revolutions"]

@@ -29,12 +29,12 @@ from .settings import WakeSettings, FlightCondition, WakeSettingsError
 from .biot_savart import segment_velocity, segment_velocity_numpy, core_radius
 from .wake import FreeVortexWake, WakeDivergedError
 from .trim import WakeTrim, WakeTrimError, WakeInputError, trim_wake, run_wake
-from .sweeps import run_sweeps, SweepSpec, SweepSpecError
+from .sweeps import run_sweeps, MultisineSpec, SweepSpec, SweepSpecError
 from .cache import CACHE_ENV, CacheWarning, WakeCache, WakeCacheError, resolve_cache_dir
 
 __all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError",
            "segment_velocity", "segment_velocity_numpy", "core_radius",
            "FreeVortexWake", "WakeDivergedError",
            "WakeTrim", "WakeTrimError", "WakeInputError", "trim_wake", "run_wake",
-           "run_sweeps", "SweepSpec", "SweepSpecError",
+           "run_sweeps", "MultisineSpec", "SweepSpec", "SweepSpecError",
            "CACHE_ENV", "CacheWarning", "WakeCache", "WakeCacheError", "resolve_cache_dir"]

@@ -29,7 +29,7 @@ from .cache import WakeCache, WakeCacheError, _finite_tree, check_finite_frame, 
 from .executor import make_executor
 from .records import _run_spec, _trim   # noqa: F401 - looked up here at call time (tests patch them)
 
-__all__ = ["SweepSpec", "SweepSpecError", "run_sweeps", "sweep_inputs"]
+__all__ = ["MultisineSpec", "SweepSpec", "SweepSpecError", "run_sweeps", "sweep_inputs"]
 
 _CACHE_VERSION = "wake-4"   # bump when the marching code changes results (4: common low-passed buffer
 #                            velocity, convected far wake, flap MBC columns, TPP inputs)
@@ -165,6 +165,116 @@ class SweepSpec:
         return {self.control: sweep_inputs(self, dt)}
 
 
+@dataclass(frozen=True)
+class MultisineSpec:
+    """One record exciting several controls at once with orthogonal multisines.
+
+    The controls get disjoint harmonic sets of ``2 pi / duration`` in
+    ``[w_min, w_max]`` with Schroeder-like phases
+    (:func:`flightid.orthogonal_multisine`), so one record replaces one sweep per
+    control (the dissertation's recommendation 6); estimate the MIMO response
+    with :func:`flightid.mimo_response`.
+
+    Parameters
+    ----------
+    controls : tuple of str
+        Controls moved together (canonical names, e.g. the six swashplate
+        controls ``("theta0_U", "theta1s_U", ..., "theta1c_L")``); unique.
+    amplitude : float
+        Peak value of every control's input [rad] (<= 0.5).
+    duration : float
+        Multisine period and record length [s] (after ``trim_start``).
+    w_min, w_max : float
+        Excited band [rad/s].
+    spectrum : {"flat", "log"}
+        Harmonic amplitudes (see :func:`flightid.orthogonal_multisine`); "log"
+        gives equal power per decade like the exponential sweeps.
+    fade : float
+        Half-cosine fade-in/out [s] at the ends of the multisine.
+    trim_start : float
+        Seconds at trim before the multisine starts [s].
+    seed : int or None
+        Seed of the start phases (reproducibility).
+    label : str
+        Name of the run (default ``"multisine_<n>controls"``).
+    """
+
+    controls: tuple
+    amplitude: float = 0.02
+    duration: float = 60.0
+    w_min: float = 0.7
+    w_max: float = 30.0
+    spectrum: str = "log"
+    fade: float = 0.5
+    trim_start: float = 0.5
+    seed: int | None = 0
+    label: str = ""
+
+    def __post_init__(self):
+        e = SweepSpecError
+        controls = self.controls
+        if isinstance(controls, str) or not isinstance(controls, (tuple, list)) or not controls:
+            raise e(f"MultisineSpec.controls must be a non-empty tuple of control names, got {controls!r}")
+        if any(not isinstance(c, str) or not c for c in controls):
+            raise e(f"MultisineSpec.controls must hold control names (strings), got {controls!r}")
+        if len(set(controls)) != len(controls):
+            raise e(f"MultisineSpec.controls must be unique, got {controls!r}")
+        object.__setattr__(self, "controls", tuple(controls))
+        _real(e, "MultisineSpec.duration", self.duration, positive=True, unit="s")
+        _real(e, "MultisineSpec.amplitude", self.amplitude, positive=True, unit="rad")
+        if self.amplitude > 0.5:
+            raise e(f"MultisineSpec.amplitude must be within 0.5 rad, got {self.amplitude!r}")
+        for name in ("w_min", "w_max"):
+            _real(e, f"MultisineSpec.{name}", getattr(self, name), positive=True, unit="rad/s")
+        if not self.w_max > self.w_min:
+            raise e(f"MultisineSpec.w_max ({self.w_max}) must exceed w_min ({self.w_min}) [rad/s]")
+        for name in ("fade", "trim_start"):
+            _real(e, f"MultisineSpec.{name}", getattr(self, name), nonnegative=True, unit="s")
+        if self.spectrum not in ("flat", "log"):
+            raise e(f"MultisineSpec.spectrum must be 'flat' or 'log', got {self.spectrum!r}")
+        if self.seed is not None and (isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer))):
+            raise e(f"MultisineSpec.seed must be an integer or None, got {self.seed!r}")
+        if not isinstance(self.label, str):
+            raise e(f"MultisineSpec.label must be a string, got {self.label!r}")
+
+    @property
+    def name(self):
+        """Name of the run."""
+        return self.label or f"multisine_{len(self.controls)}controls"
+
+    def multisine(self, dt):
+        """The :class:`flightid.Multisine` of this record at step ``dt`` [s] (time from its start).
+
+        Parameters
+        ----------
+        dt : float
+            Sample time [s].
+        """
+        from flightid import orthogonal_multisine   # imported here: optional dependency
+        try:
+            return orthogonal_multisine(len(self.controls), self.duration, dt, self.w_min, self.w_max,
+                                        self.amplitude, spectrum=self.spectrum, fade=self.fade, seed=self.seed)
+        except ValueError as err:
+            raise SweepSpecError(f"MultisineSpec {self.name!r}: {err}") from None
+
+    def inputs(self, dt):
+        """``{control: (t, u)}`` [s, rad] at step ``dt`` [s]: trim, then the multisines.
+
+        Parameters
+        ----------
+        dt : float
+            Sample time [s].
+        """
+        ms = self.multisine(dt)
+        n0 = int(round(self.trim_start / dt))
+        t = dt * np.arange(n0 + ms.t.size + 1)
+        out = {}
+        for j, c in enumerate(self.controls):
+            u = np.concatenate([np.zeros(n0), ms.U[:, j], [0.0]])
+            out[c] = (t, u)
+        return out
+
+
 class SweepSpecError(ValueError):
     """A :class:`SweepSpec` field is NaN, infinite, complex, of the wrong type or out of range."""
 
@@ -252,7 +362,8 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     config : AircraftConfig
     settings : WakeSettings
     flight : FlightCondition
-    specs : sequence of SweepSpec
+    specs : sequence of SweepSpec or MultisineSpec
+        Input records (a MultisineSpec moves several controls in one record).
     trim : dict, optional
         Keyword arguments of :func:`aircraft.wake.trim_wake` (e.g. ``ct``, ``mode``).
         The trim must converge: the sweeps never start from an unconverged trim.
@@ -295,17 +406,19 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
                              ("flight", flight, FlightCondition)):
         if not isinstance(value, cls):
             raise TypeError(f"{name} must be an aircraft {cls.__name__}, got {type(value).__name__}")
-    if isinstance(specs, SweepSpec):
+    if isinstance(specs, (SweepSpec, MultisineSpec)):
         specs = [specs]
     specs = list(specs)
     if not specs:
         raise SweepSpecError("run_sweeps needs at least one SweepSpec")
     controls = _control_names(config)
     for k, s in enumerate(specs):
-        if not isinstance(s, SweepSpec):
-            raise SweepSpecError(f"specs[{k}] must be a SweepSpec, got {type(s).__name__}")
-        if s.control not in controls:
-            raise SweepSpecError(f"SweepSpec {s.name!r}: unknown control {s.control!r}; "
+        if not isinstance(s, (SweepSpec, MultisineSpec)):
+            raise SweepSpecError(f"specs[{k}] must be a SweepSpec or MultisineSpec, got {type(s).__name__}")
+        unknown = [c for c in s.controls if c not in controls]
+        if unknown:
+            what = f"control {unknown[0]!r}" if len(unknown) == 1 else f"controls {unknown}"
+            raise SweepSpecError(f"{type(s).__name__} {s.name!r}: unknown {what}; "
                                  f"this configuration has {controls}")
     names = [s.name for s in specs]
     if len(set(names)) != len(names):

@@ -1,0 +1,216 @@
+"""Benchmark: the coaxial 6-state hover model from ONE multisine record vs six sweeps.
+
+Identifies :class:`aircraft.identification.Coaxial6State` on the coaxial compound
+rotor (hover, system C_T 0.0053 + 0.0043 split equally, torques balanced) on the
+same coarse wake twice:
+
+(a) six one-control sweeps (:func:`aircraft.identification.identify_inflow`);
+(b) ONE record of all six swashplate controls with orthogonal multisines
+    (:func:`aircraft.identification.identify_inflow_multisine`).
+
+Prints the wake revolutions each needs (target (b) <= 1/3 of (a)), the parameter
+differences (target < 5 % on the well-identified parameters, CR < 20 % in both),
+J_ave of each (target within 20 %) and writes a Bode overlay of both measured
+lambda/C responses and fitted models. It first runs the same comparison on the
+synthetic truth (the published model simulated with scipy; ``--synthetic-only``
+runs just that, in a minute, and writes ``synthetic.txt``). Outputs go to ``--out``
+(default ``benchmarks/results/multisine``): ``summary.txt``, ``parameters.csv``,
+``bode.png``.
+"""
+import argparse
+import io
+import math
+import time
+from contextlib import redirect_stdout
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+CT_SYSTEM = 0.0053 + 0.0043
+PAIRS = [("lam0_U", "CT_U"), ("lam1s_U", "CL_U"), ("lam0_L", "CT_L"), ("lam1s_L", "CL_L"),
+         ("lam0_L", "CT_U"), ("lam0_U", "CT_L"), ("lam1s_L", "CL_U"), ("lam1s_U", "CL_L")]
+
+
+def _sweep_revolutions(settings, controls, omega, dt):
+    """Revolutions of the six sweep records identify_inflow marches (same specs as it builds)."""
+    from aircraft.wake import SweepSpec
+    from aircraft.wake.sweeps import sweep_inputs
+    s = settings
+    total = 0.0
+    for k, c in enumerate(controls):
+        t, _ = sweep_inputs(SweepSpec(c, kind="sweep", amplitude=s.amplitude, duration=s.sweep_s,
+                                      w_min=s.w_min, w_max=s.w_max, seed=k), dt)
+        total += t[-1] * omega / (2 * np.pi)
+    return total
+
+
+def _compare(pa, pb, cr_max):
+    a = pa.set_index("parameter")
+    b = pb.set_index("parameter")
+    df = pd.DataFrame({"value_sweeps": a.value, "status_sweeps": a.status, "CR_sweeps_pct": a.cramer_rao_pct,
+                       "value_multisine": b.value, "status_multisine": b.status,
+                       "CR_multisine_pct": b.cramer_rao_pct})
+    df["diff_pct"] = 100 * (df.value_multisine - df.value_sweeps) / df.value_sweeps.abs().where(
+        df.value_sweeps != 0)
+    df["well_identified"] = ((df.status_sweeps == "free") & (df.status_multisine == "free")
+                             & (df.CR_sweeps_pct < cr_max) & (df.CR_multisine_pct < cr_max))
+    return df.reset_index()
+
+
+def run(duration, out, n_jobs, amplitude):
+    from aircraft.configs import coaxial_compound
+    from aircraft.identification import Coaxial6State, IdentificationSettings, identify_inflow
+    from aircraft.identification.multisine import MultisineSettings, identify_inflow_multisine
+    from aircraft.wake import WakeSettings
+    from flightid.plotting import bode_with_coherence
+
+    config = coaxial_compound()
+    structure = Coaxial6State()
+    wake = WakeSettings(azimuth_step=math.radians(15), wake_revolutions=2.0, n_elements=6)
+    settings = IdentificationSettings(wake=wake)
+    ms = MultisineSettings(duration=duration, amplitude=amplitude)
+    omega = float(config.rotors[0].omega)
+    dt = wake.azimuth_step / omega
+    print("== multisine benchmark: coaxial 6-state hover model, six sweeps vs ONE multisine record ==")
+    print(f"configuration: coaxial_compound() (omega {omega} rad/s), hover, system C_T {CT_SYSTEM:.4f} "
+          "split equally, torque balanced; coarse wake WakeSettings(azimuth_step=15 deg, "
+          f"wake_revolutions=2.0, n_elements=6), dt {dt:.5f} s; default IdentificationSettings "
+          f"(sweeps {settings.sweep_s} s x 6 at {settings.amplitude} rad, band {settings.w_min}-{settings.w_max} "
+          f"rad/s, fit {settings.fit_range}); multisine {ms}")
+    t0 = time.perf_counter()
+    model_a = identify_inflow(config, None, structure, ct=CT_SYSTEM, settings=settings, n_jobs=n_jobs,
+                              progress=False)
+    wall_a = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    model_b = identify_inflow_multisine(config, None, structure, ct=CT_SYSTEM, settings=settings, multisine=ms,
+                                        n_jobs=n_jobs, progress=False)
+    wall_b = time.perf_counter() - t0
+    revs_a = _sweep_revolutions(settings, structure.controls, omega, dt)
+    revs = model_b.provenance["revolutions"]
+    revs_b = revs["multisine_6controls"]
+    shared = revs["doublet_theta0_U"] + revs["zero_input"]
+    ratio = revs_b / revs_a
+    print(f"\nwall time (runs already in the wake cache cost nothing): six sweeps {wall_a:.0f} s, "
+          f"multisine {wall_b:.0f} s")
+    print(f"excitation: {model_b.provenance['excitation']}")
+    print(f"\nwake revolutions of the identification records: six sweeps {revs_a:.0f}, one multisine "
+          f"{revs_b:.0f} -> ratio {ratio:.3f} (target <= 1/3: {'met' if ratio <= 1 / 3 else 'NOT met'}); "
+          f"both also march the same doublet + zero-input runs ({shared:.0f} revs): totals "
+          f"{revs_a + shared:.0f} vs {revs_b + shared:.0f} ({(revs_b + shared) / (revs_a + shared):.3f})")
+    cmp = _compare(model_a.parameters, model_b.parameters, settings.cramer_rao_max)
+    well = cmp[cmp.well_identified]
+    max_diff = well.diff_pct.abs().max() if len(well) else float("nan")
+    print(f"\nJ_ave: six sweeps {model_a.J_ave:.1f}, multisine {model_b.J_ave:.1f} -> ratio "
+          f"{model_b.J_ave / model_a.J_ave:.3f} (target within 20 %: "
+          f"{'met' if abs(model_b.J_ave / model_a.J_ave - 1) <= 0.2 else 'NOT met'})")
+    print(f"parameters: {len(well)} well identified in both (free, CR < {settings.cramer_rao_max:g} %); "
+          f"largest difference {max_diff:.2f} % (target < 5 %: {'met' if max_diff < 5 else 'NOT met'}); "
+          f"{int((well.diff_pct.abs() < 5).sum())} of {len(well)} within 5 %")
+    with pd.option_context("display.width", 200, "display.max_columns", 20):
+        print(cmp.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+    print("\ncost table (six sweeps | multisine):")
+    ct = model_a.cost_table.merge(model_b.cost_table, on=["output", "input"], how="outer",
+                                  suffixes=("_sweeps", "_multisine"))
+    print(ct.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
+    print("\nverification on the doublet (six sweeps):")
+    print(model_a.verification_table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
+    print("verification on the doublet (multisine):")
+    print(model_b.verification_table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
+    out.mkdir(parents=True, exist_ok=True)
+    cmp.to_csv(out / "parameters.csv", index=False)
+    w = model_a.responses.omega
+    sources = [(model_a.responses, "six sweeps (data)"), (model_b.responses, "multisine (data)"),
+               (model_a.fit.structure.to_frd(w, name="six-sweep model"), "six-sweep model"),
+               (model_b.fit.structure.to_frd(w, name="multisine model"), "multisine model")]
+    fig = bode_with_coherence(sources, PAIRS, max_columns=4)
+    fig.suptitle(f"Coaxial 6-state lambda/C: six sweeps ({revs_a:.0f} revs) vs one multisine "
+                 f"({revs_b:.0f} revs), coarse wake")
+    fig.savefig(out / "bode.png", dpi=110)
+    print(f"\nwrote {out / 'parameters.csv'} and {out / 'bode.png'}")
+
+
+def synthetic(duration_sweep=100.0, duration_multisine=200.0, noise=0.02, seed=0):
+    """The same comparison on the synthetic truth (the published Eq. 5.3 model, simulated with
+    scipy through a fully populated mixing and a 0.05 s loads lag; seconds of CPU, no wake)."""
+    import scipy.signal as sig
+    from aircraft.identification import Coaxial6State
+    from aircraft.identification.synthetic import (SWASHPLATE_CONTROLS, coaxial_sweep_set, mixing_matrix,
+                                                   simulate_mltau)
+    from aircraft.inflow.published import COAXIAL_HOVER_6STATE
+    from flightid import (combine_responses, fit, frequency_response, joint_input_output, mimo_response,
+                          orthogonal_multisine)
+    model = COAXIAL_HOVER_6STATE
+    names_c, names_l = model.input_names, model.output_names
+    dt, w_min, w_max = 0.01, 0.4, 40.0
+    t0 = time.perf_counter()
+    runs = coaxial_sweep_set(model, seed=seed, dt=dt, duration=duration_sweep, noise=noise, w_min=w_min,
+                             w_max=w_max)
+    simo = [frequency_response(r["t"], r["theta"], np.vstack([r["loads"], r["lam"]]).T, w_min=0.8, w_max=30.0,
+                               input_name=SWASHPLATE_CONTROLS[r["control"]], output_names=names_c + names_l)
+            for r in runs]
+    sweeps = combine_responses(simo)
+    # one record of all six controls: the same mixing, lag, model and noise as coaxial_sweep_set
+    ms = orthogonal_multisine(6, duration_multisine, dt, w_min, w_max, 1e-3, spectrum="log", seed=seed)
+    k_mix = mixing_matrix(6, seed)
+    lag = sig.StateSpace(-20.0 * np.eye(6), 20.0 * k_mix, np.eye(6), np.zeros((6, 6)))
+    _, loads, _ = sig.lsim(lag, ms.U, ms.t)
+    loads = loads.T
+    lam = simulate_mltau(model.M, model.L, model.tau, model.omega, ms.t, loads)
+    rng = np.random.default_rng(seed + 1)
+    lam = lam + noise * rng.standard_normal(lam.shape) * lam.std(axis=1, keepdims=True)
+    loads = loads + noise * rng.standard_normal(loads.shape) * loads.std(axis=1, keepdims=True)
+    multi = mimo_response(ms.t, ms.U, np.vstack([loads, lam]).T, w_min=0.8, w_max=30.0,
+                          input_names=SWASHPLATE_CONTROLS, output_names=names_c + names_l)
+    structure = Coaxial6State("printed")
+    truth = structure.published_values(model)
+    start = np.random.default_rng(100)
+    initial = {k: (v * start.uniform(0.7, 1.3) if not k.startswith("t") else 0.05) for k, v in truth.items()}
+    results = {}
+    for label, resp in (("sweeps", sweeps), ("multisine", multi)):
+        lam_c = joint_input_output(resp.select(names_l), resp.select(names_c))
+        results[label] = fit(structure.build(initial, model.omega), lam_c, frequency_ranges=(1.0, 25.0))
+    wall = time.perf_counter() - t0
+    pa, pb = results["sweeps"].parameters, results["multisine"].parameters
+    cmp = _compare(pa, pb, 20.0)
+    cmp["truth"] = cmp.parameter.map(truth)
+    well = cmp[cmp.well_identified]
+    secs_a = sum(r["t"][-1] for r in runs)
+    print("\n== synthetic truth (published Eq. 5.3 model, scipy; no wake) ==")
+    print(f"six sweeps of {duration_sweep:g} s (+3 s trim each) = {secs_a:.0f} s vs one multisine of "
+          f"{duration_multisine:g} s: ratio {duration_multisine / secs_a:.3f}; noise {noise:.0%} of RMS; "
+          f"multisine RPF {np.round(ms.relative_peak_factor, 2).tolist()}; wall {wall:.1f} s")
+    ja, jb = results["sweeps"].J_ave, results["multisine"].J_ave
+    print(f"J_ave: sweeps {ja:.2f}, multisine {jb:.2f}; {len(well)} well-identified parameters, largest "
+          f"difference {well.diff_pct.abs().max():.2f} %, largest multisine error vs truth "
+          f"{(100 * (well.value_multisine - well.truth) / well.truth.abs()).abs().max():.2f} % "
+          f"(sweeps {(100 * (well.value_sweeps - well.truth) / well.truth.abs()).abs().max():.2f} %)")
+    print(cmp.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--duration", type=float, default=90.0, help="multisine record [s]")
+    parser.add_argument("--amplitude", type=float, default=0.02, help="multisine peak per control [rad]")
+    parser.add_argument("--jobs", type=int, default=2, help="wake worker processes")
+    parser.add_argument("--out", type=Path, default=Path("benchmarks/results/multisine"))
+    parser.add_argument("--synthetic-only", action="store_true",
+                        help="only the synthetic-truth comparison (seconds; no wake)")
+    args = parser.parse_args(argv)
+    buf = io.StringIO()
+
+    class _Tee(io.TextIOBase):
+        def write(self, s):
+            buf.write(s)
+            return __import__("sys").__stdout__.write(s)
+
+    with redirect_stdout(_Tee()):
+        synthetic()
+        if not args.synthetic_only:
+            run(args.duration, args.out, args.jobs, args.amplitude)
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / ("synthetic.txt" if args.synthetic_only else "summary.txt")).write_text(buf.getvalue())
+
+
+if __name__ == "__main__":
+    main()
