@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
-                       _code_version, _trim_request, _verify, identification_hash)
+                       _code_version, _fit_and_verify, _trim_request, identification_hash)
 from .store import SCHEMA
 from .structures import get_structure
 
@@ -131,7 +131,7 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     """
     from tqdm.auto import tqdm
     from aircraft.wake import FlightCondition, MultisineSpec, SweepSpec, run_sweeps
-    from flightid import SingularInputError, fit, joint_input_output, mimo_response, reduce
+    from flightid import SingularInputError, joint_input_output, mimo_response
 
     t_start = time.perf_counter()
     settings = settings or IdentificationSettings()
@@ -185,22 +185,8 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
         raise PipelineError(f"the multisine record cannot separate the inputs: {err}") from err
     stages.update()
     omega = float(config.rotors[0].omega)
-    flight_structure = structure.build(structure.initial_values(responses, s.start_points), omega)
-    fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min)
-    if s.reduce:
-        reduction = reduce(flight_structure, responses, insensitivity_max=s.insensitivity_max,
-                           cramer_rao_max=s.cramer_rao_max, protected=structure.protected,
-                           progress=progress, **fit_kwargs)
-        result = reduction.result
-    else:
-        reduction, result = None, fit(flight_structure, responses, **fit_kwargs)
-    stages.update()
-    model_ss = result.structure.to_statespace(pade_order=s.pade_order)
-    ref = pd.Series(wake_trim.outputs)
-    check = _verify(model_ss, runs[doublet_spec.name], ref, structure.inputs, structure.outputs)
-    floor = _verify(model_ss, runs[zero_spec.name], ref, structure.inputs, structure.outputs)
-    stages.update()
-    stages.close()
+    staged, reduction, result, check, floor = _fit_and_verify(
+        structure, responses, runs, doublet_spec, zero_spec, wake_trim, omega, s, progress, stages)
     dt = s.wake_settings.azimuth_step / omega
     excitation = ms_spec.multisine(dt)
     provenance = {"source": "aircraft.identification.identify_inflow_multisine", "schema": SCHEMA,
@@ -215,4 +201,4 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     return IdentifiedModel(name=name or f"{structure.key} from one multisine record", structure=structure,
                            fit=result, reduction=reduction, responses=responses, verification=check,
                            noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
-                           provenance=provenance, hash_payload=payload)
+                           provenance=provenance, hash_payload=payload, staged=staged)

@@ -343,6 +343,41 @@ def _verify(model, run, ref, inputs, outputs):
     return verify(model, run["t"].to_numpy(), u, y, remove_initial=False)
 
 
+def _fit_and_verify(structure, responses, runs, doublet_spec, zero_spec, wake_trim, omega, s, progress,
+                    stages):
+    """Start, (staged) fit, reduction and verification of ``structure`` on lambda/(C, beta_dot)
+    ``responses``; shared by every excitation. Returns ``(staged, reduction, result,
+    doublet verification, noise-floor verification)``."""
+    from flightid import fit, fit_staged, reduce
+    flight_structure = structure.build(structure.initial_values(responses, s.start_points), omega)
+    fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min,
+                      **structure.fit_options)
+    staged, plan = None, structure.staged_plan()
+    if plan:
+        # large structures are built up stage by stage (§6.4.3); the reduction then
+        # starts from the staged optimum with every parameter free, on the last
+        # stage's responses
+        staged = fit_staged(flight_structure, responses, plan, progress=progress, **fit_kwargs)
+        flight_structure = staged.result.structure.free(list(staged.result.structure.names))
+        fit_kwargs["pairs"] = list(zip(staged.result.cost_table.output, staged.result.cost_table.input))
+    if s.reduce:
+        reduction = reduce(flight_structure, responses, insensitivity_max=s.insensitivity_max,
+                           cramer_rao_max=s.cramer_rao_max, protected=structure.protected,
+                           progress=progress, **fit_kwargs)
+        result = reduction.result
+    else:
+        reduction, result = None, fit(flight_structure, responses, **fit_kwargs)
+    stages.update()
+    stages.set_postfix_str("verify")
+    model_ss = result.structure.to_statespace(pade_order=s.pade_order)
+    ref = pd.Series(wake_trim.outputs)
+    check = _verify(model_ss, runs[doublet_spec.name], ref, structure.inputs, structure.outputs)
+    floor = _verify(model_ss, runs[zero_spec.name], ref, structure.inputs, structure.outputs)
+    stages.update()
+    stages.close()
+    return staged, reduction, result, check, floor
+
+
 def identify_inflow(config, condition=None, structure="single_rotor_3state", *, ct=None, trim=None,
                     settings=None, controls=None, name=None, n_jobs=2, cache_dir="default",
                     progress=True, scheduler=None):
@@ -390,7 +425,7 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     """
     from tqdm.auto import tqdm
     from aircraft.wake import FlightCondition, SweepSpec, run_sweeps
-    from flightid import fit, fit_staged, joint_input_output, reduce
+    from flightid import joint_input_output
 
     t_start = time.perf_counter()
     settings = settings or IdentificationSettings()
@@ -438,32 +473,8 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     stages.update()
     stages.set_postfix_str("fit + reduce")
     omega = float(config.rotors[0].omega)
-    flight_structure = structure.build(structure.initial_values(responses, s.start_points), omega)
-    fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min,
-                      **structure.fit_options)
-    staged, plan = None, structure.staged_plan()
-    if plan:
-        # large structures are built up stage by stage (§6.4.3); the reduction then
-        # starts from the staged optimum with every parameter free, on the last
-        # stage's responses
-        staged = fit_staged(flight_structure, responses, plan, progress=progress, **fit_kwargs)
-        flight_structure = staged.result.structure.free(list(staged.result.structure.names))
-        fit_kwargs["pairs"] = list(zip(staged.result.cost_table.output, staged.result.cost_table.input))
-    if s.reduce:
-        reduction = reduce(flight_structure, responses, insensitivity_max=s.insensitivity_max,
-                           cramer_rao_max=s.cramer_rao_max, protected=structure.protected,
-                           progress=progress, **fit_kwargs)
-        result = reduction.result
-    else:
-        reduction, result = None, fit(flight_structure, responses, **fit_kwargs)
-    stages.update()
-    stages.set_postfix_str("verify")
-    model_ss = result.structure.to_statespace(pade_order=s.pade_order)
-    ref = pd.Series(wake_trim.outputs)
-    check = _verify(model_ss, runs[doublet_spec.name], ref, structure.inputs, structure.outputs)
-    floor = _verify(model_ss, runs[zero_spec.name], ref, structure.inputs, structure.outputs)
-    stages.update()
-    stages.close()
+    staged, reduction, result, check, floor = _fit_and_verify(
+        structure, responses, runs, doublet_spec, zero_spec, wake_trim, omega, s, progress, stages)
     provenance = {"source": "aircraft.identification.identify_inflow", "schema": SCHEMA,
                   "pipeline": PIPELINE_VERSION, "code_version": _code_version(),
                   "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
