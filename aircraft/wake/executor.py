@@ -4,19 +4,22 @@
 which yields ``fn(job)`` for every job as each finishes (in completion order, so
 progress is reported as runs end, whatever ran them):
 
-===========================  ==============================================
-``scheduler=None``,          in this process, one after another
-``n_jobs <= 1``              (:class:`SerialExecutor`)
-``scheduler=None``,          a local pool of ``n_jobs`` processes
-``n_jobs >= 2``              (:class:`LocalPoolExecutor`; the embedded
-                             default: no server, nothing to start)
-``scheduler="tcp://h:p"``    the workers of the Dask ``distributed`` cluster
-                             at that address (:class:`DaskExecutor`; a
-                             client is opened on entry, closed on exit)
-``scheduler=Client``         the cluster of that ``dask.distributed.Client``
-                             (left open on exit); ``n_jobs`` is ignored:
-                             the cluster's workers set the concurrency
-===========================  ==============================================
+=================================  ==========================================
+``scheduler=None, n_jobs <= 1``    in this process, one after another
+                                   (:class:`SerialExecutor`)
+``scheduler=None, n_jobs >= 2``    a local pool of ``n_jobs`` processes
+                                   (:class:`LocalPoolExecutor`; the embedded
+                                   default: no server, nothing to start)
+``scheduler="tcp://host:port"``    the workers of the Dask ``distributed``
+                                   cluster at that address
+                                   (:class:`DaskExecutor`; a client is opened
+                                   on entry and closed on exit)
+``scheduler=Client``               the cluster of that
+                                   ``dask.distributed.Client`` (left open)
+=================================  ==========================================
+
+With a scheduler ``n_jobs`` is ignored: the cluster's workers set the
+concurrency.
 
 Dask is optional (``pip install distributed``, or the package's ``cluster``
 extra) and imported only when a scheduler is given.
@@ -186,6 +189,15 @@ class DaskExecutor:
         A malformed address, a closed or asynchronous client (a ValueError).
     TypeError
         ``scheduler`` is neither a string nor a Client.
+
+    Notes
+    -----
+    A wake run is one process's worth of numba and NumPy work that holds the
+    GIL between kernel calls, so start the workers with one thread each and one
+    process per core, e.g. ``dask scheduler`` then, on every machine,
+    ``dask worker tcp://host:8786 --nworkers <cores> --nthreads 1``. The workers
+    need this package (the same version: :func:`aircraft.wake.run_sweeps`
+    refuses results from other wake code) but not the caller's filesystem.
     """
 
     name = "dask"
