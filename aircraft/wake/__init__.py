@@ -20,8 +20,18 @@ Architecture
                     run_wake (prescribed controls -> pandas.DataFrame)
     cache.py        checked disk cache: atomic writes, schema + code version, SHA-256,
                     finite values; bad entries warned about and recomputed
-    sweeps.py       run_sweeps: sweeps/doublets in parallel processes with tqdm and
-                    a disk cache keyed on a hash of every input
+    records.py      what one record computes (trim a fresh wake, march one input
+                    record from it): the numbers-producing part of run_sweeps
+    executor.py     where independent runs execute, one interface (map_unordered,
+                    completion order): this process, a local process pool (the
+                    default), or a Dask distributed cluster (scheduler= address or
+                    Client; dask imported only then)
+    sweeps.py       run_sweeps: sweeps, doublets and multisine records (SweepSpec,
+                    MultisineSpec) through the executor with tqdm and a disk cache
+                    keyed on a hash of every input, written by the calling process
+                    as each run arrives
+    gpu.py          segment_velocity on a CUDA device (numba.cuda), chosen by
+                    biot_savart.kernel_backend() when a device passes its self-check
 
 Conventions follow :mod:`aircraft.inflow.base` (each rotor in its own frame).
 """
@@ -31,10 +41,12 @@ from .wake import FreeVortexWake, WakeDivergedError
 from .trim import WakeTrim, WakeTrimError, WakeInputError, trim_wake, run_wake
 from .sweeps import run_sweeps, MultisineSpec, SweepSpec, SweepSpecError
 from .cache import CACHE_ENV, CacheWarning, WakeCache, WakeCacheError, resolve_cache_dir
+from .executor import make_executor, SchedulerError, DaskNotInstalledError
 
 __all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError",
            "segment_velocity", "segment_velocity_numpy", "core_radius",
            "FreeVortexWake", "WakeDivergedError",
            "WakeTrim", "WakeTrimError", "WakeInputError", "trim_wake", "run_wake",
            "run_sweeps", "MultisineSpec", "SweepSpec", "SweepSpecError",
-           "CACHE_ENV", "CacheWarning", "WakeCache", "WakeCacheError", "resolve_cache_dir"]
+           "CACHE_ENV", "CacheWarning", "WakeCache", "WakeCacheError", "resolve_cache_dir",
+           "make_executor", "SchedulerError", "DaskNotInstalledError"]

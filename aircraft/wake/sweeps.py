@@ -3,12 +3,15 @@
 The cache (:mod:`aircraft.wake.cache`) lives in the ``cache_dir`` argument, else
 the folder named by the environment variable ``ROTORWAKE_CACHE_DIR``, else
 ``.cache/wake``; its keys also hold a digest of the wake's source code.
-Entries are written atomically by the worker that computed them as soon as each
-run finishes, and checked (schema, code version, key, length, SHA-256, finite
-values) on every read, so a sweep set killed midway and started again reuses
-every finished run, recomputes only the rest and never reads a partial file; a
-bad entry is reported with a :class:`~aircraft.wake.cache.CacheWarning` and
-recomputed.
+Entries are written atomically by the calling process as soon as each run's
+result arrives (the workers, which may be on a Dask cluster without this
+machine's filesystem, write nothing), and checked (schema, code version, key,
+length, SHA-256, finite values) on every read, so a sweep set killed midway and
+started again reuses every finished run, recomputes only the rest and never
+reads a partial file; a bad entry is reported with a
+:class:`~aircraft.wake.cache.CacheWarning` and recomputed. Where the runs
+execute (this process, a local pool, a Dask cluster) is the executor's
+business (:mod:`aircraft.wake.executor`) and cannot change a result or a key.
 
 Each run is cached on disk (``.cache/wake/<hash>.pkl``) keyed on a SHA-256 of
 every input (configuration, settings, flight condition, trim request, input
@@ -17,6 +20,7 @@ study costs nothing and a code change never serves an old result.
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 from dataclasses import dataclass, asdict
@@ -298,10 +302,15 @@ def _key(payload: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 
-def _init_pool_worker():
-    # one kernel thread per worker process: the pool already fills the cores
+def _init_pool_worker(backend=None):
+    # one kernel thread per worker: the pool already fills the cores; and the
+    # caller's Biot-Savart backend (the cache key holds it, see _kernel_key)
     import numba
     numba.set_num_threads(1)
+    if backend is not None:
+        from .biot_savart import kernel_backend, set_kernel_backend
+        if kernel_backend() != backend:
+            set_kernel_backend(backend)
 
 
 def _check_run(spec):
@@ -331,8 +340,17 @@ def _check_trim(value):
         raise WakeCacheError(f"trim entry: NaN or infinite values in {bad[:5]}")
 
 
+def _code_identity():
+    """What must match between the caller and a worker for a result to be cached
+    under the caller's key: the wake code digest and the Biot-Savart backend."""
+    from .biot_savart import kernel_backend
+    return _wake_code_digest(), kernel_backend()
+
+
 def _worker(args):
-    config, settings, flight, snap, trim_result, spec, points, cache_dir, key = args
+    """One run, in whichever process the executor chose; stores nothing (the
+    caller does, as each result arrives: a cluster worker may not see its disk)."""
+    config, settings, flight, snap, trim_result, spec, points = args
     df = _run_spec(config, settings, flight, snap, trim_result, spec, points)
     df.attrs["spec"] = asdict(spec)
     check = _check_run(spec)
@@ -340,10 +358,7 @@ def _worker(args):
         check(df)
     except WakeCacheError as e:
         raise WakeCacheError(f"the wake run produced an unusable record, not stored: {e}") from None
-    if cache_dir is not None:
-        # written here, as soon as the run ends: a kill later loses nothing finished
-        WakeCache(cache_dir, _CACHE_VERSION).store(key, df, kind="run")
-    return spec.name, df
+    return spec.name, df, _code_identity()
 
 
 def _control_names(config):
@@ -354,7 +369,7 @@ def _control_names(config):
 
 
 def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_jobs=2,
-               cache_dir="default", progress=True):
+               cache_dir="default", progress=True, scheduler=None):
     """Trim once, then run every input record from the trimmed wake in parallel.
 
     Parameters
@@ -370,13 +385,22 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     points : dict, optional
         Off-rotor points ``{label: (x, y, z)}`` in body axes [m].
     n_jobs : int
-        Worker processes (1: run in this process).
+        Worker processes (1: run in this process); ignored with ``scheduler``.
     cache_dir : str or Path or None
         Disk cache folder; None disables the cache.  The default, ``"default"``,
         is the environment variable ``ROTORWAKE_CACHE_DIR`` if set (an empty
         value, ``0`` or ``off`` disables the cache), else ``.cache/wake``.
     progress : bool
-        Show a tqdm progress bar over the runs.
+        Show a tqdm progress bar over the runs (advanced as each run finishes,
+        whichever executor ran it).
+    scheduler : str or dask.distributed.Client, optional
+        None (default): the runs execute on this machine (``n_jobs``). A Dask
+        scheduler address ``"tcp://host:port"`` or a ``Client``: on that
+        cluster's workers (see :mod:`aircraft.wake.executor`), which need this
+        package installed but not this machine's filesystem. The results and
+        the cache entries are the same whichever executor ran them: this process
+        trims, keys and stores every run, and refuses a result computed by other
+        wake code or another Biot-Savart backend than its own.
 
     Returns
     -------
@@ -390,6 +414,12 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
         The trim did not converge (its residual is in the message); nothing is run.
     SweepSpecError, ValueError
         Bad specs (unknown control, duplicate names), points or arguments.
+    SchedulerError, TypeError, DaskNotInstalledError
+        A bad ``scheduler`` (see :class:`aircraft.wake.executor.DaskExecutor`),
+        raised before anything is computed.
+    WakeCacheError
+        A worker ran other wake code (its code digest or kernel backend differs
+        from this process's); its result is not stored.
 
     Warns
     -----
@@ -434,6 +464,10 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
         if arr.shape != (3,) or not np.isrealobj(arr) or not np.all(np.isfinite(arr.astype(float))):
             raise ValueError(f"point {label!r} must be three finite real coordinates (x, y, z) [m], "
                              f"got {p!r}")
+    from .biot_savart import kernel_backend
+    # built (and the scheduler validated) before the trim; nothing starts until entered
+    executor = make_executor(n_jobs, initializer=functools.partial(_init_pool_worker, kernel_backend()),
+                             scheduler=scheduler)
     trim = dict(trim or {})
     points = dict(points or {})
     base = {"v": _CACHE_VERSION, "code": _wake_code_digest(), "config": repr(config), "settings": asdict(settings),
@@ -463,15 +497,30 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
             cache.store(trim_key, (snap, trim_result), kind="trim", check=_check_trim)
     else:
         snap, trim_result = cached_trim
-    jobs = [(config, settings, flight, snap, trim_result, s, points,
-             str(folder) if cache is not None else None, keys[s.name]) for s in todo]
+    jobs = [(config, settings, flight, snap, trim_result, s, points) for s in todo]
+    if len(jobs) == 1 and scheduler is None:
+        executor = make_executor(1)   # no pool for one run
+    by_name = {s.name: s for s in specs}
+    identity = _code_identity()
     bar = tqdm(total=len(specs), initial=len(specs) - len(todo), desc="wake sweeps",
                disable=not progress)
-    with make_executor(n_jobs if len(jobs) > 1 else 1, initializer=_init_pool_worker) as executor:
-        for name, df in executor.map_unordered(_worker, jobs):
-            results[name] = df
-            bar.update()
-    bar.close()
+    try:
+        if jobs:
+            with executor:
+                for name, df, worker_identity in executor.map_unordered(_worker, jobs):
+                    if worker_identity != identity:
+                        raise WakeCacheError(
+                            f"run {name!r} was computed by other wake code or another Biot-Savart "
+                            f"backend (worker: digest {worker_identity[0][:12]}, kernel "
+                            f"{worker_identity[1]!r}; this process: {identity[0][:12]}, "
+                            f"{identity[1]!r}); install the same version on the workers. Not stored.")
+                    if cache is not None:
+                        # stored here, as each run arrives: a kill later loses nothing finished
+                        cache.store(keys[name], df, kind="run", check=_check_run(by_name[name]))
+                    results[name] = df
+                    bar.update()
+    finally:
+        bar.close()
     out = {s.name: results[s.name] for s in specs}
     out["trim"] = trim_result
     return out
