@@ -33,15 +33,14 @@ angle of the trimmed inflow.
 from __future__ import annotations
 
 import math
-import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 
 __all__ = ["OffRotorError", "OffRotorSurface", "OffRotorSettings", "horizontal_tail", "wing_under_hub",
            "gain_delay_structure", "fit_off_rotor", "wake_exposure", "INFLOW_STATES", "VELOCITY_COMPONENTS",
-           "UH60_STABILATOR_ASPECT_RATIO"]
+           "UH60_STABILATOR_ASPECT_RATIO", "PUBLISHED_HOVER"]
 
 #: Model inputs, the rotor inflow harmonics, in the order of Eqs. 2.39-2.40.
 INFLOW_STATES = ("lam0", "lam1c", "lam1s")
@@ -51,6 +50,18 @@ _KEY = {"lam0": "0", "lam1c": "1c", "lam1s": "1s"}
 #: Aspect ratio of the UH-60A stabilator (14.4 ft span, 45 ft^2): the span of a
 #: configuration's horizontal tail follows from its area with it.
 UH60_STABILATOR_ASPECT_RATIO = 14.4 ** 2 / 45.0
+
+#: The dissertation's hover models of its MFW (reference values, never outputs):
+#: tail, §4.6.1 (Eq. 2.39, one delay per inflow state, average of 7 quarter-chord
+#: points); wing under the hub, Eq. 4.10 (Eq. 2.40). Rows vx, vy, vz; columns lam0,
+#: lam1c, lam1s; delays [s]. Its sign convention for the velocity components is
+#: not stated (its wing K0z = -1.37 suggests z up); ours are body axes, z down.
+PUBLISHED_HOVER = {
+    "tail": {"K": ((-0.2892, -0.3108, 0.0532), (-0.142, -0.1353, 0.3407), (0.3148, 0.5361, -0.1104)),
+             "tau": ((0.06225, 0.2115, 0.6929),) * 3},
+    "wing": {"K": ((0.0221, -0.7496, -0.2117), (0.0, 0.207, -0.766), (-1.366, 0.02861, 0.0)),
+             "tau": ((0.2149, 0.541, 0.3795), (0.0, 0.4452, 0.5327), (0.07075, 0.154, 0.0))},
+}
 
 
 class OffRotorError(ValueError):
