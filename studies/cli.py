@@ -90,7 +90,8 @@ STUDIES = {s.command: s for s in (
           "off-rotor induced velocity at the tail and a wing under the hub, hover and mu = 0.1 "
           "(Eqs. 2.39-2.40, §4.6)", 25.0,
           default_out="results/off_rotor_models",
-          cached_note="wake runs cached under .cache/wake; --coarse about 8 min, --small under a minute"),
+          cached_note="wake runs cached under .cache/wake; --coarse about 8 min, --small under a minute",
+          in_results=False),
     Study("coaxial-wake-identification", "studies.coaxial_wake_identification",
           "6-state coaxial inflow model identified from our free wake (Eq. 5.3)", 14.0,
           default_out="results/coaxial_wake_identification",

@@ -229,6 +229,7 @@ def test_identify_off_rotor_pipeline_on_a_synthetic_wake(monkeypatch):
     assert "tail (Eq. 2.39)" in res.summary()
 
 
+@pytest.mark.slow
 def test_study_small_end_to_end(tmp_path):
     """The study on a tiny wake (hover), run as a program: the whole chain writes its tables.
 
@@ -238,7 +239,7 @@ def test_study_small_end_to_end(tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=root, ROTORWAKE_CACHE_DIR=str(tmp_path / "cache"))
     out = tmp_path / "out"
     done = subprocess.run([sys.executable, "-m", "studies.off_rotor_models", "--small", "--jobs", "1",
-                           "--out", str(out)], cwd=root, env=env, capture_output=True, text=True, timeout=900)
+                           "--out", str(out)], cwd=root, env=env, capture_output=True, text=True, timeout=1800)
     assert done.returncode == 0, done.stderr[-3000:]
     for name in ("gains_delays.csv", "verification.csv", "exposure.csv", "exposure_vs_mu.csv",
                  "dissertation_hover.csv", "verification_tail_mu0p00.png", "verification_wing_mu0p00.png",
