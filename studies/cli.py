@@ -87,6 +87,12 @@ STUDIES = {s.command: s for s in (
     Study("wake-identification", "studies.wake_identification",
           "3-state inflow model of the single rotor identified from our free wake (Tables 4.1-4.2)", 3.0,
           default_out="results/wake_identification", cached_note="wake runs cached under .cache/wake"),
+    Study("off-rotor-models", "studies.off_rotor_models",
+          "off-rotor induced velocity at the tail and a wing under the hub, hover and mu = 0.1 "
+          "(Eqs. 2.39-2.40, §4.6)", 25.0,
+          default_out="results/off_rotor_models",
+          cached_note="wake runs cached under .cache/wake; --coarse about 8 min, --small under a minute",
+          in_results=False),
     Study("coaxial-wake-identification", "studies.coaxial_wake_identification",
           "6- and 12-state coaxial inflow models identified from our free wake (Eq. 5.3, §6.3)", 45.0,
           default_out="results/coaxial_wake_identification",

@@ -12,6 +12,8 @@
     store.py       versioned model files (aircraft/data/models/*.json), ModelRecord
     regenerate.py  recipes of the shipped models; ``python -m aircraft.identification.regenerate``
     synthetic.py   synthetic-truth data generated with scipy (independent of flightid)
+    off_rotor.py   off-rotor induced-velocity models (Eqs. 2.39-2.40): surfaces, fit, wake exposure
+    off_rotor_identify.py  identify_off_rotor: wake runs -> vbar/lam -> Eq. 2.39/2.40 -> doublet TIC
 
 The wake (numba) is imported only when a pipeline runs.
 """
@@ -22,10 +24,16 @@ from .store import SCHEMA, ModelFileError, ModelRecord, load_record, shipped_mod
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
                        identification_hash, identify_inflow)
 from .multisine import MultisineSettings, identify_inflow_multisine, record_revolutions
+from .off_rotor import (INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRotorSettings, OffRotorSurface,
+                        fit_off_rotor, gain_delay_structure, horizontal_tail, wake_exposure, wing_under_hub)
+from .off_rotor_identify import OffRotorModel, OffRotorResult, flight_condition, identify_off_rotor
 
 __all__ = ["COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
            "STRUCTURES", "Coaxial6State", "Coaxial12State", "InflowStructure", "SingleRotor3State",
            "get_structure", "SCHEMA", "ModelFileError", "ModelRecord", "load_record", "shipped_models",
            "PIPELINE_VERSION", "IdentificationSettings", "IdentifiedModel", "PipelineError",
            "identification_hash", "identify_inflow",
-           "MultisineSettings", "identify_inflow_multisine", "record_revolutions"]
+           "MultisineSettings", "identify_inflow_multisine", "record_revolutions",
+           "INFLOW_STATES", "VELOCITY_COMPONENTS", "OffRotorError", "OffRotorSettings", "OffRotorSurface",
+           "fit_off_rotor", "gain_delay_structure", "horizontal_tail", "wake_exposure", "wing_under_hub",
+           "OffRotorModel", "OffRotorResult", "flight_condition", "identify_off_rotor"]
