@@ -10,17 +10,22 @@
     store.py       versioned model files (aircraft/data/models/*.json), ModelRecord
     regenerate.py  recipes of the shipped models; ``python -m aircraft.identification.regenerate``
     synthetic.py   synthetic-truth data generated with scipy (independent of flightid)
+    coaxial_forward.py  CoaxialForward12State: the fully coupled 200 kt structure
+                   (Eqs. 6.4-6.7, 6.12-6.13), registered in STRUCTURES
 
 The wake (numba) is imported only when a pipeline runs.
 """
 from .frames import COAXIAL_DIRECTIONS, FrameError, convert_frames, frame_signs
 from .structures import (STRUCTURES, Coaxial6State, Coaxial12State, InflowStructure, SingleRotor3State,
                          get_structure)
+from .coaxial_forward import CoaxialForward12State
 from .store import SCHEMA, ModelFileError, ModelRecord, load_record, shipped_models
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
                        identification_hash, identify_inflow)
 
-__all__ = ["COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
+STRUCTURES[CoaxialForward12State.key] = CoaxialForward12State
+
+__all__ = ["CoaxialForward12State", "COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
            "STRUCTURES", "Coaxial6State", "Coaxial12State", "InflowStructure", "SingleRotor3State",
            "get_structure", "SCHEMA", "ModelFileError", "ModelRecord", "load_record", "shipped_models",
            "PIPELINE_VERSION", "IdentificationSettings", "IdentifiedModel", "PipelineError",
