@@ -133,7 +133,7 @@ def forward_trim_request(ct_total, *, tol=1e-4, max_iter=30):
 
 def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, ct_total=None,
                              structure=None, settings=None, n_jobs=2, cache_dir="default", progress=True,
-                             name=None):
+                             name=None, max_reduction_steps=100):
     """Identify the 200 kt coaxial inflow model (Eq. 6.5 structure) from our free wake.
 
     Parameters
@@ -151,7 +151,7 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         Default the full Eq. 6.5 pattern (180 parameters at the start).
     settings : IdentificationSettings, optional
         Default: the pipeline's defaults with a lower-rotor lateral doublet
-        (``theta1s_L``, as Figs. 6.29-6.33) of 2 deg.
+        (``theta1s_L``, as Figs. 6.29-6.33) of 0.035 rad (2 deg).
     n_jobs : int
         Wake worker processes.
     cache_dir : str or None
@@ -160,6 +160,11 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         Progress bars.
     name : str, optional
         Model name.
+    max_reduction_steps : int
+        Removals tried by the automatic reduction (Fig. 6.1; one refit each); 0
+        skips it, as ``settings.reduce=False`` does. The pipeline fits, then the
+        reduction runs here with this bound (``provenance["max_reduction_steps"]``);
+        the doublet verification is then redone on the reduced model.
 
     Returns
     -------
@@ -167,20 +172,62 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         The reduced fit, its cost table and parameters (CR %, insensitivity %),
         the doublet verification beside the wake's noise floor.
     """
+    import dataclasses
+    import time
     from .coaxial_forward import CoaxialForward12State
-    from .pipeline import IdentificationSettings, identify_inflow
+    from .pipeline import IdentificationSettings, _verify, identification_hash, identify_inflow
     config = _config(config)
     structure = structure if structure is not None else CoaxialForward12State()
     if not isinstance(structure, CoaxialForward12State):
         raise TypeError(f"structure must be a CoaxialForward12State, got {type(structure).__name__}")
-    settings = settings or IdentificationSettings(doublet_control="theta1s_L",
-                                                  doublet_amplitude=math.radians(2.0))
+    settings = settings or IdentificationSettings(doublet_control="theta1s_L", doublet_amplitude=0.035)
+    if isinstance(max_reduction_steps, bool) or not isinstance(max_reduction_steps, int) \
+            or max_reduction_steps < 0:
+        raise ValueError(f"max_reduction_steps must be an integer >= 0, got {max_reduction_steps!r}")
     if ct_total is None:
         ct_total = aircraft_thrust_at(config, speed, rotor_aoa)
-    return identify_inflow(config, forward_flight_condition(speed, rotor_aoa), structure,
-                           trim=forward_trim_request(ct_total), settings=settings, n_jobs=n_jobs,
-                           cache_dir=cache_dir, progress=progress,
-                           name=name or f"coaxial {speed / 0.514444:.0f} kt {structure.key} from our wake")
+    condition, request = forward_flight_condition(speed, rotor_aoa), forward_trim_request(ct_total)
+    name = name or f"coaxial {speed / 0.514444:.0f} kt {structure.key} from our wake"
+    # the pipeline fits once; the reduction (one refit per removal, 180 parameters at
+    # the start) runs here so that its number of steps can be bounded
+    model = identify_inflow(config, condition, structure, trim=request,
+                            settings=dataclasses.replace(settings, reduce=False), n_jobs=n_jobs,
+                            cache_dir=cache_dir, progress=progress, name=name)
+    if not settings.reduce or max_reduction_steps == 0:
+        return model
+    from flightid import reduce
+    t0 = time.perf_counter()
+    s = settings
+    reduction = reduce(model.fit.structure, model.responses, insensitivity_max=s.insensitivity_max,
+                       cramer_rao_max=s.cramer_rao_max, protected=structure.protected, progress=progress,
+                       max_steps=max_reduction_steps, frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega,
+                       coherence_min=s.coherence_min)
+    ss = reduction.result.structure.to_statespace(pade_order=s.pade_order)
+    ref = pd.Series(model.trim.outputs)
+    doublet, zero = _verification_runs(config, condition, request, s, structure, cache_dir)
+    check = _verify(ss, doublet, ref, structure.inputs, structure.outputs)
+    floor = _verify(ss, zero, ref, structure.inputs, structure.outputs)
+    digest, payload = identification_hash(config, condition, structure, settings, trim=request)
+    provenance = {**model.provenance, "reduction": "aircraft.identification.coaxial_200kt",
+                  "max_reduction_steps": max_reduction_steps,
+                  "reduction_wall_s": round(time.perf_counter() - t0, 1)}
+    return dataclasses.replace(model, fit=reduction.result, reduction=reduction, verification=check,
+                               noise_floor=floor, settings=settings, settings_hash=digest,
+                               hash_payload=payload, provenance=provenance)
+
+
+def _verification_runs(config, condition, request, s, structure, cache_dir):
+    """The doublet and zero-input records, specified as :func:`identify_inflow` specifies
+    them (served from the wake cache, which keys records by content)."""
+    from aircraft.wake import SweepSpec, run_sweeps
+    control = s.doublet_control or structure.controls[0]
+    specs = [SweepSpec(control, kind="doublet", amplitude=s.doublet_amplitude, duration=s.doublet_s,
+                       pulse_width=s.pulse_width),
+             SweepSpec(control, kind="sine", amplitude=0.0, duration=s.noise_floor_s, w_min=1.0,
+                       label="zero_input")]
+    runs = run_sweeps(config, s.wake_settings, condition, specs, trim=request, n_jobs=1, cache_dir=cache_dir,
+                      progress=False)
+    return runs[specs[0].name], runs[specs[1].name]
 
 
 def cost_table_beside_dissertation(model):
@@ -227,6 +274,9 @@ class IsolatedRotorCheck:
         Name of the Isolated Rotors entry.
     poles : pandas.DataFrame
         :func:`aircraft.helicopter.modes` of each aircraft (``model`` column).
+    failed : dict
+        Model name -> trim error message, for models with which the aircraft does
+        not trim at this condition (listed in :meth:`verdicts`, not compared).
     """
 
     comparison: object
@@ -236,6 +286,7 @@ class IsolatedRotorCheck:
     threshold_deg: float
     reference: str
     poles: pd.DataFrame = field(default_factory=pd.DataFrame)
+    failed: dict = field(default_factory=dict)
 
     def holds(self, model):
         """True if ``model``'s responses are within the thresholds of Isolated Rotors.
@@ -256,7 +307,10 @@ class IsolatedRotorCheck:
         g = self.differences.groupby("model", sort=False)
         out = g[["max_abs_magnitude_diff_db", "max_abs_phase_diff_deg"]].max().reset_index()
         out["isolated_rotors_hold"] = [self.holds(m) for m in out.model]
-        return out
+        out["trim"] = "converged"
+        rows = [{"model": m, "isolated_rotors_hold": None, "trim": f"failed: {msg[:160]}"}
+                for m, msg in self.failed.items()]
+        return pd.concat([out, pd.DataFrame(rows)], ignore_index=True) if rows else out
 
     def to_pandas(self):
         """The long response table of every model (see ``BareAirframeComparison``)."""
@@ -271,7 +325,7 @@ class IsolatedRotorCheck:
         return fig
 
 
-def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lift_offset=0.1,
+def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lift_offset=0.03,
                          band=(1.0, 20.0), threshold_db=1.0, threshold_deg=10.0, omega=None, settings=None,
                          max_trim_s=None):
     """Bare-airframe responses at 200 kt with each inflow model beside Isolated Rotors (Figs. 7.7-7.10).
@@ -288,7 +342,8 @@ def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=R
         Trim [m/s], [rad].
     lift_offset : float
         Differential lateral cyclic held at trim [rad] (§7.2); the dissertation
-        prints no value.
+        prints no value. Default 0.03 rad: the aircraft with Eqs. 6.12-6.13 trims
+        there (and at 0), not at 0.1 rad (measured: no trim, residual 216).
     band : (float, float)
         Band of the differences [rad/s] (§7.4.2.1 discusses 5-20 rad/s).
     threshold_db, threshold_deg : float
@@ -309,9 +364,12 @@ def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=R
     ------
     ValueError
         For an empty ``inflows``, a bad band or thresholds.
+    aircraft.helicopter.TrimError
+        If the aircraft with Isolated Rotors does not trim (other models that do
+        not trim are listed in ``failed``).
     """
     from aircraft.helicopter import (Helicopter, HelicopterSettings, TrimCondition, compare_bare_airframe,
-                                     linearize, modes, trim)
+                                     TrimError, linearize, modes, trim)
     from aircraft.inflow import IsolatedRotors
     if not inflows:
         raise ValueError("inflows is empty: give at least one name -> inflow model")
@@ -329,8 +387,14 @@ def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=R
     omega = np.logspace(-1, np.log10(40.0), 200) if omega is None else np.asarray(omega, float)
     # trimmed here (no wall-clock budget: the 200 kt trims with 12 inflow states take
     # tens of seconds on a busy machine), then compared as linear systems
-    trims = {name: trim(Helicopter(config, m, settings), condition, max_time=max_trim_s)
-             for name, m in models.items()}
+    trims, failed = {}, {}
+    for name, m in models.items():
+        try:
+            trims[name] = trim(Helicopter(config, m, settings), condition, max_time=max_trim_s)
+        except TrimError as err:     # e.g. no trim with this inflow at this lift offset
+            if name == reference:
+                raise
+            failed[name] = str(err)
     systems = {name: linearize(tr) for name, tr in trims.items()}
     comp = compare_bare_airframe(systems, config=config, condition=condition, omega=omega,
                                  pairs=FIGS_7_7_TO_7_10, settings=settings)
@@ -338,4 +402,5 @@ def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=R
     diff = comp.difference(reference, band=(lo, hi))
     poles = pd.concat([modes(sys).assign(model=name) for name, sys in comp.systems.items()],
                       ignore_index=True)
-    return IsolatedRotorCheck(comp, diff, (lo, hi), float(threshold_db), float(threshold_deg), reference, poles)
+    return IsolatedRotorCheck(comp, diff, (lo, hi), float(threshold_db), float(threshold_deg), reference, poles,
+                              failed)
