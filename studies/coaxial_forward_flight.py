@@ -45,7 +45,7 @@ from aircraft.wake import WakeSettings
 COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 
 
-def settings_for(small=False, sweep_s=30.0, reduce=True):
+def settings_for(small=False, sweep_s=30.0, reduce=True, near_wake_only=False):
     """(IdentificationSettings, structure) of the full or the ``--small`` run.
 
     Parameters
@@ -57,6 +57,10 @@ def settings_for(small=False, sweep_s=30.0, reduce=True):
         Sweep length of the full run [s] (30 s: down to 0.7 rad/s with two windows).
     reduce : bool
         Reduce the full run (Fig. 6.1).
+    near_wake_only : bool
+        Fit only the near-wake half of Eq. 6.5 in the full run (72 parameters;
+        the full structure's 180-parameter fit and reduction take hours on a
+        busy 2-core machine).
     """
     if small:
         wake = WakeSettings(azimuth_step=math.radians(30.0), wake_revolutions=1.0, n_elements=4)
@@ -66,7 +70,7 @@ def settings_for(small=False, sweep_s=30.0, reduce=True):
                 CoaxialForward12State(near_wake_only=True))
     return (IdentificationSettings(wake=COARSE, sweep_s=sweep_s, doublet_control="theta1s_L",
                                    doublet_amplitude=0.035, reduce=reduce),
-            CoaxialForward12State())
+            CoaxialForward12State(near_wake_only=near_wake_only))
 
 
 def parameter_table(model):
@@ -83,6 +87,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--small", action="store_true", help="tiny configuration (tests)")
     parser.add_argument("--sweep-s", type=float, default=30.0, help="sweep record length [s]")
+    parser.add_argument("--near-wake-only", action="store_true",
+                        help="fit the near-wake half of Eq. 6.5 only (72 parameters instead of 180)")
     parser.add_argument("--no-reduce", action="store_true", help="skip the automatic reduction")
     parser.add_argument("--lift-offset", type=float, default=0.03,
                         help="differential lateral cyclic of the aircraft trim [rad]")
@@ -96,7 +102,7 @@ def main(argv=None):
     out.mkdir(parents=True, exist_ok=True)
     fmt = lambda v: f"{v:.4g}"   # noqa: E731
     pd.set_option("display.width", 200)
-    settings, structure = settings_for(args.small, args.sweep_s, not args.no_reduce)
+    settings, structure = settings_for(args.small, args.sweep_s, not args.no_reduce, args.near_wake_only)
     config = coaxial_compound(cruise=True)
     ct_total = aircraft_thrust_at(config)
     model = identify_coaxial_forward(config, ct_total=ct_total, structure=structure, settings=settings,
