@@ -45,16 +45,17 @@ from aircraft.wake import WakeSettings
 COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 
 
-def settings_for(small=False, sweep_s=30.0, reduce=True, near_wake_only=False):
+def settings_for(small=False, sweep_s=40.0, reduce=True, near_wake_only=False):
     """(IdentificationSettings, structure) of the full or the ``--small`` run.
 
     Parameters
     ----------
     small : bool
-        Tiny wake (30 deg steps, 1 rev, 4 elements), 10 s sweeps from 1.5 rad/s,
+        Tiny wake (30 deg steps, 1 rev, 4 elements), 10 s sweeps from 2.2 rad/s,
         the near-wake half of Eq. 6.5 (72 parameters), no reduction.
     sweep_s : float
-        Sweep length of the full run [s] (30 s: down to 0.7 rad/s with two windows).
+        Sweep length of the full run [s] (the response needs >= 36 s for 0.7 rad/s;
+        a 30 s record stops at 0.79 rad/s and the pipeline refuses it).
     reduce : bool
         Reduce the full run (Fig. 6.1).
     near_wake_only : bool
@@ -64,7 +65,8 @@ def settings_for(small=False, sweep_s=30.0, reduce=True, near_wake_only=False):
     """
     if small:
         wake = WakeSettings(azimuth_step=math.radians(30.0), wake_revolutions=1.0, n_elements=4)
-        return (IdentificationSettings(wake=wake, sweep_s=10.0, w_min=1.5, w_max=20.0, fit_range=(2.0, 15.0),
+        # a 12 s record (10 s sweep + 2 s lead-in/out) resolves down to 8 pi / 12 = 2.09 rad/s
+        return (IdentificationSettings(wake=wake, sweep_s=10.0, w_min=2.2, w_max=20.0, fit_range=(2.2, 15.0),
                                        doublet_control="theta1s_L", doublet_amplitude=0.035, doublet_s=2.0,
                                        noise_floor_s=2.0, reduce=False),
                 CoaxialForward12State(near_wake_only=True))
@@ -86,7 +88,7 @@ def parameter_table(model):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--small", action="store_true", help="tiny configuration (tests)")
-    parser.add_argument("--sweep-s", type=float, default=30.0, help="sweep record length [s]")
+    parser.add_argument("--sweep-s", type=float, default=40.0, help="sweep record length [s] (>= 36 s for 0.7 rad/s)")
     parser.add_argument("--near-wake-only", action="store_true",
                         help="fit the near-wake half of Eq. 6.5 only (72 parameters instead of 180)")
     parser.add_argument("--no-reduce", action="store_true", help="skip the automatic reduction")
