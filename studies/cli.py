@@ -103,6 +103,11 @@ STUDIES = {s.command: s for s in (
     Study("bare-airframe", "studies.bare_airframe",
           "bare-airframe responses of the coaxial with five inflow models (Figs. 7.3-7.11)", 1.0,
           default_out="results/bare_airframe"),
+    Study("coaxial-forward-flight", "studies.coaxial_forward_flight",
+          "coaxial at 200 kt: Eq. 6.5 inflow model from our coarse wake (Table 6.3, Eqs. 6.12-6.13) and "
+          "the bare airframe against Isolated Rotors (Figs. 7.7-7.10)", 30.0,
+          default_out="results/coaxial_forward_flight",
+          cached_note="wake runs cached under .cache/wake (the fit and reduction remain)"),
     Study("rotor-truth-check", "studies.rotor_truth_check",
           "rotor-level truth check: free wake with free flapping vs blade-element rotor with "
           "identified / Dynamic-Climb / Pitt-Peters inflow (§7.2.2)", 10.0,

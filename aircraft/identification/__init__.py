@@ -14,12 +14,15 @@
     synthetic.py   synthetic-truth data generated with scipy (independent of flightid)
     off_rotor.py   off-rotor induced-velocity models (Eqs. 2.39-2.40): surfaces, fit, wake exposure
     off_rotor_identify.py  identify_off_rotor: wake runs -> vbar/lam -> Eq. 2.39/2.40 -> doublet TIC
+    coaxial_forward.py  CoaxialForward12State: the fully coupled 200 kt structure
+                   (Eqs. 6.4-6.7, 6.12-6.13), registered in STRUCTURES
 
 The wake (numba) is imported only when a pipeline runs.
 """
 from .frames import COAXIAL_DIRECTIONS, FrameError, convert_frames, frame_signs
 from .structures import (STRUCTURES, Coaxial6State, Coaxial12State, InflowStructure, SingleRotor3State,
                          get_structure)
+from .coaxial_forward import CoaxialForward12State
 from .store import SCHEMA, ModelFileError, ModelRecord, load_record, shipped_models
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
                        identification_hash, identify_inflow)
@@ -28,7 +31,9 @@ from .off_rotor import (INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRo
                         fit_off_rotor, gain_delay_structure, horizontal_tail, wake_exposure, wing_under_hub)
 from .off_rotor_identify import OffRotorModel, OffRotorResult, flight_condition, identify_off_rotor
 
-__all__ = ["COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
+STRUCTURES[CoaxialForward12State.key] = CoaxialForward12State
+
+__all__ = ["CoaxialForward12State", "COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
            "STRUCTURES", "Coaxial6State", "Coaxial12State", "InflowStructure", "SingleRotor3State",
            "get_structure", "SCHEMA", "ModelFileError", "ModelRecord", "load_record", "shipped_models",
            "PIPELINE_VERSION", "IdentificationSettings", "IdentifiedModel", "PipelineError",

@@ -68,7 +68,7 @@ from .base import flap_rate_names, inflow_names, load_names
 __all__ = ["PublishedInflowModel", "PublishedFGCModel", "TABLE_4_1", "TABLE_4_2", "tables_4_1_4_2",
            "UH60_HOVER_MFW", "UH60_HOVER_PITT_PETERS", "UH60_HOVER_RFW", "UH60_MU01_MFW", "UH60_MU02_MFW",
            "COAXIAL_HOVER_6STATE", "COAXIAL_HOVER_12STATE", "COAXIAL_200KT_12STATE",
-           "COAXIAL_FORWARD_12STATE", "PUBLISHED_MODELS", "ALL_MODELS", "in_rotor_frames",
+           "COAXIAL_FORWARD_12STATE", "TABLE_6_3", "PUBLISHED_MODELS", "ALL_MODELS", "in_rotor_frames",
            "fgc_state_names"]
 
 #: UH-60-like rotor speed Omega_0 [rad/s] (Appendix B) and nominal trim C_T.
@@ -404,6 +404,20 @@ COAXIAL_200KT_12STATE = PublishedFGCModel(
 
 #: Alias (the 200 kt model is the only forward-flight coaxial model printed).
 COAXIAL_FORWARD_12STATE = COAXIAL_200KT_12STATE
+
+#: Table 6.3: cost J of the dissertation's 200 kt fit (Eqs. 6.12-6.13) per response,
+#: ``{(output, input): J}`` with our signal names (reference data). The printed "Average
+#: Cost 77.0" is not the mean of the printed entries (34.7); both are kept as printed.
+TABLE_6_3 = {
+    (out, inp): j
+    for out, row in (("lam0_U", (15.6, 15.3, 14.1, 32.2, 17.1, 44.8)),
+                     ("lam1s_U", (9.5, 11.1, 8.3, 6.5, 10.3, 8.7)),
+                     ("lam1c_U", (10.2, 9.6, 6.1, 8.8, 10.1, 25.6)),
+                     ("lam0_L", (32.4, 337.4, 20.1, 17.7, 42.0, 217.2)),
+                     ("lam1s_L", (3.4, 6.2, 4.3, 64.4, 12.0, 15.6)),
+                     ("lam1c_L", (14.8, 27.9, 20.2, 20.4, 49.2, 79.4)))
+    for inp, j in zip(("CT_U", "CL_U", "CM_U", "CT_L", "CL_L", "CM_L"), row)
+}
 
 #: Every printed model, by a short key.
 PUBLISHED_MODELS = {
