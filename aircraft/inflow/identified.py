@@ -40,6 +40,11 @@ def _pade_ss(tau, order):
     return control.ss(control.tf(num, den))
 
 
+#: Delays below this [s] are realised as none: the automatic reduction leaves removed
+#: delays at round-off values (1e-36 s), whose Padé poles (-6/tau) would be ~1e36 1/s.
+NEGLIGIBLE_DELAY = 1e-6
+
+
 def mltau_statespace(M, L, tau=None, *, omega, time="azimuth", pade_order=2,
                      inputs=None, outputs=None, name="M/Lbar/tau", delays="rowwise"):
     """Realise ``M lam' + Lbar lam = u(t - tau)`` (row-wise delays, Eq. 2.16) in seconds.
@@ -78,6 +83,7 @@ def mltau_statespace(M, L, tau=None, *, omega, time="azimuth", pade_order=2,
     tau = np.zeros((n, n)) if tau is None else np.asarray(tau, float)
     if tau.shape != (n, n) or np.any(tau < 0) or not np.all(np.isfinite(tau)):
         raise InflowError(f"tau must be a ({n}, {n}) array of non-negative delays [s]")
+    tau = np.where(tau < NEGLIGIBLE_DELAY, 0.0, tau)
     if time not in ("azimuth", "seconds"):
         raise InflowError(f"time must be 'azimuth' or 'seconds', got {time!r}")
     if not omega > 0:
@@ -122,6 +128,34 @@ def _pairwise_delays(h, tau, pade_order):
     summer = np.hstack([np.eye(n_out)] * n_in)
     sys = control.ss(sys.A, sys.B, summer @ sys.C, summer @ sys.D)
     return control.minreal(sys, tol=1e-9, verbose=False)
+
+
+def _delayed_columns(h, tau, pade_order):
+    """``H_ij(s) exp(-s tau_ij)`` realised without a minimal realisation: the columns
+    without delays share one copy of ``h``; each column with a delay gets its own copy
+    followed by a Padé delay per delayed output. Every block is stable when ``h`` is,
+    so the (non-minimal) realisation is too. ``control.minreal`` on the fully
+    duplicated system (12 states x 10 columns, poles from -0.02 to -4700 1/s for our
+    wake's 12-state model) returned a spurious unstable pole."""
+    n_out, n_in = h.noutputs, h.ninputs
+    delayed = [j for j in range(n_in) if np.any(tau[:, j] > 0)]
+    plain = [j for j in range(n_in) if j not in delayed]
+    blocks, columns = [], []
+    if plain:
+        blocks.append(control.ss(h.A, h.B[:, plain], h.C, h.D[:, plain]))
+        columns += plain
+    for j in delayed:
+        hj = control.ss(h.A, h.B[:, [j]], h.C, h.D[:, [j]])
+        delays = [_pade_ss(tau[i, j], pade_order) if tau[i, j] > 0 else control.ss([], [], [], [[1.0]])
+                  for i in range(n_out)]
+        blocks.append(control.series(hj, control.append(*delays)))
+        columns.append(j)
+    sys = blocks[0]
+    for b in blocks[1:]:
+        sys = control.append(sys, b)
+    summer = np.hstack([np.eye(n_out)] * len(blocks))       # y = sum of the blocks' outputs
+    order = np.argsort(columns)                              # back to the input order
+    return control.ss(sys.A, sys.B[:, order], summer @ sys.C, (summer @ sys.D)[:, order])
 
 
 class IdentifiedInflow(InflowModel):
@@ -292,9 +326,9 @@ class IdentifiedInflow(InflowModel):
             if tau.shape != (C.shape[0], G.shape[1]) or not np.all(np.isfinite(tau)) or np.any(tau < 0):
                 raise InflowError(f"tau must be a ({C.shape[0]}, {G.shape[1]}) array of finite non-negative "
                                   f"delays [s], got shape {tau.shape}")
-            tau = tau[:, [order.index(c) for c in canonical]]
+            tau = np.where(tau < NEGLIGIBLE_DELAY, 0.0, tau[:, [order.index(c) for c in canonical]])
             if np.any(tau > 0):
-                sys = _pairwise_delays(sys, tau, pade_order)
+                sys = _delayed_columns(sys, tau, pade_order)
                 sys = control.ss(sys.A, sys.B, sys.C, np.zeros((C.shape[0], Gc.shape[1])), inputs=canonical,
                                  outputs=inflow_names(rotors), states=[f"inflow_x{k}" for k in range(sys.nstates)],
                                  name=_sysname(name))
