@@ -164,13 +164,16 @@ def figures(cases, out):
     fig.savefig(out / "time_responses.png", dpi=90)
 
 
-def _design(plant, start, command, actuator, label):
-    """DMO on one plant (None, with the reason printed, if no design is feasible)."""
+def _design(plant, start, command, actuator, label, failures=None):
+    """DMO on one plant (None, with the reason printed and added to ``failures``, if no
+    design is feasible)."""
     base = EMFDesign(plant, start, command, actuator, sensor_delay=0.01)
     try:
         res = dmo(base, progress=True)
     except InfeasibleDesignError as err:
         print(f"  {label}: infeasible ({err})")
+        if failures is not None:
+            failures.append(f"{label}: {err}")
         return None
     print(f"  {label}: {res.message} ({res.wall_time:.0f} s)")
     return res
@@ -238,16 +241,22 @@ def main(argv=None):
     command = CommandModel(frequency=4.0, damping=0.7, gain=0.05)
     start = PIDGains(0.3, 0.1, 0.05)
     print("[stage 3] DMO, case (A): design on the Dynamic-Climb aircraft")
-    res_a = _design(plant_dc, start, command, actuator, "case (A)")
+    failures = []
+    res_a = _design(plant_dc, start, command, actuator, "case (A)", failures)
     if res_a is None:
         raise SystemExit("case (A) has no feasible design: nothing to compare against")
     results = {"A": res_a}
     for key in inflows:
         print(f"[stage 3] DMO on the {labels[key]} aircraft")
-        results[key] = _design(plants[key], start, command, actuator, f"design on {labels[key]}")
+        results[key] = _design(plants[key], start, command, actuator, f"design on {labels[key]}", failures)
+    for key in systems:
+        unstable = [complex(p) for p in np.linalg.eigvals(np.asarray(systems[key].A)) if p.real > 1e-9]
+        if unstable:
+            print(f"  bare {labels.get(key, key)} aircraft: unstable poles "
+                  + ", ".join(f"{p.real:.3g}{p.imag:+.3g}j" for p in unstable[:4]) + " 1/s")
+    # an infeasible case is a result, not a crash: it is reported (infeasible.txt) and
+    # the other rows are still flown
     res_c = results["ID"]
-    if res_c is None:
-        raise SystemExit(f"case (C) on the {labels['ID']} aircraft has no feasible design")
     # case D: one gain set for every plant in this list (one line adds a plant); the
     # feed-forward (inverse plant, tau_eq) is case C's, as one controller would fly
     robust_plants = {"DC": plant_dc, labels["ID"]: plants["ID"]}
@@ -255,9 +264,10 @@ def main(argv=None):
     # start from the optimised single-plant designs (their gains and feed-forward):
     # a robust design, if one exists, lies nearer those than the generic start
     res_d, d_failures = None, []
-    for label, start_design in (("case C design", res_c.design), ("case A design", res_a.design),
-                                ("starting gains", EMFDesign(plants["ID"], start, command, actuator,
-                                                             sensor_delay=0.01))):
+    starts = ([("case C design", res_c.design)] if res_c is not None else []) + [
+        ("case A design", res_a.design),
+        ("starting gains", EMFDesign(plants["ID"], start, command, actuator, sensor_delay=0.01))]
+    for label, start_design in starts:
         try:
             res_d = dmo([start_design.with_plant(p) for p in robust_plants.values()], progress=True,
                         labels=list(robust_plants))
@@ -274,8 +284,9 @@ def main(argv=None):
         (out / "robust_infeasible.txt").unlink(missing_ok=True)
     # (case name, design, plant key of the bare airframe, dissertation column or None)
     rows_spec = [("(A) DC on DC", res_a.design, "DC", 0),
-                 (f"(B) DC on {labels['ID']}", res_a.design.with_plant(plants["ID"]), "ID", 1),
-                 (f"(C) {labels['ID']} on {labels['ID']}", res_c.design, "ID", 2)]
+                 (f"(B) DC on {labels['ID']}", res_a.design.with_plant(plants["ID"]), "ID", 1)]
+    if res_c is not None:
+        rows_spec.append((f"(C) {labels['ID']} on {labels['ID']}", res_c.design, "ID", 2))
     for key in ("ID6", "Eq. 5.3"):
         if key in inflows:
             rows_spec.append((f"(B) DC on {labels[key]}", res_a.design.with_plant(plants[key]), key, None))
@@ -298,14 +309,15 @@ def main(argv=None):
 
     specs_by_key = {"A": final_specs(res_a), **{k: final_specs(r) for k, r in results.items()
                                                  if k != "A" and r is not None}}
-    specs_d = final_specs(res_d) if res_d is not None else specs_by_key["ID"]
+    specs_d = final_specs(res_d) if res_d is not None else specs_by_key.get("ID", specs_by_key["A"])
     spec_set = lambda name: specs_d if name.startswith("(D)") else specs_by_key[specs_of[name]]  # noqa: E731
 
     def gains(design):
         return [design.gains.K_p, design.gains.K_phi, design.gains.K_Iphi, design.equivalent_delay]
 
     t74 = pd.DataFrame({"parameter": ["K_p", "K_phi", "K_Iphi", "tau_eq"],
-                        "ours (A)&(B)": gains(res_a.design), f"ours (C) {labels['ID']}": gains(res_c.design),
+                        "ours (A)&(B)": gains(res_a.design),
+                        f"ours (C) {labels['ID']}": gains(res_c.design) if res_c is not None else [np.nan] * 4,
                         **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID6", "Eq. 5.3")
                            if k in results and results[k] is not None},
                         "ours (D) robust": gains(res_d.design) if res_d is not None else [np.nan] * 4,
@@ -366,10 +378,21 @@ def main(argv=None):
     print(flap[["case", "mode", "bare_frequency_rad_s", "bare_damping", "closed_loop_frequency_rad_s",
                 "closed_loop_damping", "in_band_4_20"]].to_string(index=False, float_format=fmt))
     wc = t75.set_index("case").crossover_rad_s
-    name_a, name_c = rows_spec[0][0], rows_spec[2][0]
-    print(f"\ncrossover gain from the identified-inflow design, (C)/(A), {labels['ID']}: "
-          f"{wc[name_c] / wc[name_a]:.2f} (dissertation "
-          f"{DISSERTATION_75['crossover_rad_s'][2] / DISSERTATION_75['crossover_rad_s'][0]:.2f})")
+    name_a = rows_spec[0][0]
+    ratio_ref = DISSERTATION_75['crossover_rad_s'][2] / DISSERTATION_75['crossover_rad_s'][0]
+    c_rows = [name for name in cases if name.startswith("(C)")]
+    for name_c in c_rows:
+        print(f"crossover gain from the identified-inflow design {name_c} over (A): "
+              f"{wc[name_c] / wc[name_a]:.2f} (dissertation, its 12-state: {ratio_ref:.2f})")
+    if res_c is None:
+        print(f"case (C) on the {labels['ID']} aircraft: no feasible design (see infeasible.txt)")
+        name_c = c_rows[0] if c_rows else name_a
+    else:
+        name_c = next(n for n in c_rows if n.endswith(f"on {labels['ID']}"))
+    if failures:
+        (out / "infeasible.txt").write_text("\n".join(failures) + "\n")
+    else:
+        (out / "infeasible.txt").unlink(missing_ok=True)
     if res_d is not None:
         print(f"robustness cost, (D) over all plants vs (C): crossover {res_d.crossover:.3f} vs {wc[name_c]:.3f} rad/s "
               f"({res_d.crossover / wc[name_c] - 1:+.1%})")
