@@ -204,7 +204,8 @@ def test_bad_input_is_refused_with_clear_messages():
 def test_study_runs_end_to_end_on_a_tiny_wake(tmp_path):
     # tiny wake (20 deg steps, 1.5 revs, 4 elements), 14 s sweeps, mu = 0.1 and the hover
     # K_R sweeps: 10 wake runs, about a minute of one core (wake numba compile included)
-    env = {**os.environ, "MPLBACKEND": "Agg", "ROTORWAKE_CACHE_DIR": str(tmp_path / "cache")}
+    # the wake cache is the caller's (ROTORWAKE_CACHE_DIR, else .cache/wake): a rerun reuses the runs
+    env = {**os.environ, "MPLBACKEND": "Agg"}
     out = tmp_path / "out"
     done = subprocess.run([sys.executable, "-m", "studies.forward_flight_identification", "--small", "--mu", "0.1",
                            "--jobs", "1", "--out", str(out)], cwd=ROOT, env=env, capture_output=True, text=True,

@@ -184,6 +184,11 @@ class WakeDistortionResult:
                          "kr_magnitude_mean": self._constant(axis, magnitude=True)})
         out = pd.DataFrame(rows)
         out["kr_low_frequency"] = self.kr_low_frequency
+        if self.responses is not None:
+            # K_R scales with 1/Lbar22 (Eq. 4.18): the same constant with the data's own Lbar22
+            lb = _identified_lbar22(self.responses, self.low_frequency_points)
+            out["lbar22_identified"] = lb
+            out["kr_constant_with_lbar22_identified"] = out.kr_constant * self.lbar22 / lb
         out["kr_analytical_ref82"] = KR_ANALYTICAL
         out["kr_dissertation_fig4_39"] = 1.44     # printed best constant of §4.7 (reference)
         return out
@@ -230,6 +235,13 @@ class WakeDistortionResult:
         return (f"K_R from tip-path-plane sweeps (hover, C_T {self.ct:.5f}, Lbar22 {self.lbar22:.4f} "
                 f"from {self.lbar_source}, band {self.band[0]:g}-{self.band[1]:g} rad/s, wall "
                 f"{self.wall_s:.0f} s)\n" + c.to_string(index=False, float_format=lambda v: f"{v:.3f}"))
+
+
+def _identified_lbar22(responses, n_points):
+    """Lbar22 from the inverted low-frequency lambda/C (mean of the 1s and 1c diagonals)."""
+    g0 = np.real(responses.select(_OUTPUTS, _INPUTS[:3]).frdata[:, :, :n_points].mean(axis=2))
+    inv = np.linalg.inv(g0)
+    return float(0.5 * (inv[1, 1] + inv[2, 2]))
 
 
 def _check_band(band, coherence_min):
@@ -315,9 +327,7 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
         if lbar == "pitt_peters":
             lbar22 = -math.sqrt(ct / 2.0)
         elif lbar == "identified":
-            g0 = np.real(responses.select(_OUTPUTS, _INPUTS[:3]).frdata[:, :, :low_frequency_points].mean(axis=2))
-            inv = np.linalg.inv(g0)
-            lbar22 = float(0.5 * (inv[1, 1] + inv[2, 2]))
+            lbar22 = _identified_lbar22(responses, low_frequency_points)
         source = lbar
     else:
         lbar22, source = float(lbar), "given"
