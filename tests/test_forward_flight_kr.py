@@ -54,6 +54,27 @@ def test_structure_holds_the_printed_forward_models(printed):
     np.testing.assert_allclose(control.dcgain(inflow.system), np.linalg.inv(printed.L), rtol=1e-8, atol=1e-10)
 
 
+def test_data_driven_start_is_stable_even_from_noisy_low_frequency_data():
+    from flightid import MeasuredResponse
+    w = np.linspace(0.7, 20, 30)
+    s = SingleRotorForward()
+
+    def lam_over_c(lbar):
+        h = np.repeat(np.linalg.inv(lbar)[:, :, None], w.size, axis=2)
+        return MeasuredResponse(h, w, np.ones(h.shape), ["CT", "CL", "CM"], ["lam0", "lam1s", "lam1c"])
+
+    # a Pitt-Peters-like quasi-steady response: Lbar is its inverse, couplings included
+    good = np.array([[0.2, 0, 0.05], [0, -0.07, 0], [0.06, 0, -0.09]])
+    init = s.initial_values(lam_over_c(good))
+    assert init["l13"] == pytest.approx(0.05) and init["l31"] == pytest.approx(0.06)
+    # the tiny-wake case: Lbar33 of the wrong sign and a large coupling -> unstable start;
+    # the start keeps the diagonal magnitudes with Pitt-Peters signs, couplings zero
+    bad = np.array([[0.1157, 0, 0.0648], [0, -0.3052, 0], [-0.3001, 0, 0.129]])
+    init = s.initial_values(lam_over_c(bad))
+    assert s.build(init, OMEGA).is_stable()
+    assert init["l33"] == pytest.approx(-0.129) and init["l13"] == 0 and init["l31"] == 0
+
+
 def test_full_pattern_frees_every_entry():
     s = SingleRotorForward(pattern="full")
     assert len(s.parameter_names()) == 27 and s.protected == ("m11", "m22", "m33")
