@@ -180,10 +180,19 @@ class WakeDistortionResult:
         from aircraft.inflow import KR_ANALYTICAL
         rows = []
         for axis in ("1s", "1c", None):
-            rows.append({"axis": axis or "both", "kr_constant": self._constant(axis),
-                         "kr_magnitude_mean": self._constant(axis, magnitude=True)})
+            try:
+                row = {"axis": axis or "both", "kr_constant": self._constant(axis),
+                       "kr_magnitude_mean": self._constant(axis, magnitude=True), "note": ""}
+            except ValueError as err:   # said in the table, not a silent NaN
+                row = {"axis": axis or "both", "kr_constant": np.nan, "kr_magnitude_mean": np.nan,
+                       "note": str(err)}
+            rows.append(row)
         out = pd.DataFrame(rows)
-        out["kr_low_frequency"] = self.kr_low_frequency
+        try:
+            out["kr_low_frequency"] = self.kr_low_frequency
+        except ValueError as err:
+            out["kr_low_frequency"] = np.nan
+            out["note"] = out.note.where(out.note != "", str(err))
         if self.responses is not None:
             # K_R scales with 1/Lbar22 (Eq. 4.18): the same constant with the data's own Lbar22
             lb = _identified_lbar22(self.responses, self.low_frequency_points)
@@ -213,7 +222,9 @@ class WakeDistortionResult:
             am.semilogx(t.omega, np.abs(t.kr), label=f"|K_R| {axis} axis (free wake)")
             ap.semilogx(t.omega, np.degrees(np.angle(t.kr)), label=axis)
             ac.semilogx(t.omega, t.coherence, label=axis)
-        am.axhline(self.kr_constant, color="k", ls="--", label=f"best constant {self.kr_constant:.2f}")
+        best = float(self.constants().set_index("axis").loc["both", "kr_constant"])
+        if np.isfinite(best):
+            am.axhline(best, color="k", ls="--", label=f"best constant {best:.2f}")
         am.axhline(KR_ANALYTICAL, color="r", ls=":", label=f"analytical (Ref. 82) {KR_ANALYTICAL:g}")
         am.axhline(1.44, color="gray", ls="-.", lw=0.8, label="dissertation Fig. 4.39: 1.44")
         for a in (am, ap, ac):
