@@ -112,6 +112,11 @@ STUDIES = {s.command: s for s in (
           "rotor-level truth check: free wake with free flapping vs blade-element rotor with "
           "identified / Dynamic-Climb / Pitt-Peters inflow (§7.2.2)", 10.0,
           default_out="results/rotor_truth_check", cached_note="wake runs cached under .cache/wake"),
+    Study("forward-flight-identification", "studies.forward_flight_identification",
+          "single rotor at mu = 0.1/0.2 (Eqs. 4.7-4.8 structure) vs Pitt-Peters, and K_R(omega) in hover "
+          "(§4.4, §4.7)", 20.0, default_out="results/forward_flight_identification",
+          cached_note="wake runs cached under .cache/wake", in_results=False,
+          variants={"--wake=coarse": (4.0, ("{out}",), "wake runs cached under .cache/wake")}),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),

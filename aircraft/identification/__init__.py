@@ -16,6 +16,9 @@
     off_rotor_identify.py  identify_off_rotor: wake runs -> vbar/lam -> Eq. 2.39/2.40 -> doublet TIC
     coaxial_forward.py  CoaxialForward12State: the fully coupled 200 kt structure
                    (Eqs. 6.4-6.7, 6.12-6.13), registered in STRUCTURES
+    forward.py     single rotor in forward flight (§4.4): SingleRotorForward (Eq. 4.3),
+                   identify_forward_flight, comparison with Pitt-Peters and Eqs. 4.7-4.8
+    wake_distortion.py  K_R(omega) in hover from tip-path-plane sweeps (§4.7, Fig. 4.39)
 
 The wake (numba) is imported only when a pipeline runs.
 """
@@ -30,6 +33,12 @@ from .multisine import MultisineSettings, identify_inflow_multisine, record_revo
 from .off_rotor import (INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRotorSettings, OffRotorSurface,
                         fit_off_rotor, gain_delay_structure, horizontal_tail, wake_exposure, wing_under_hub)
 from .off_rotor_identify import OffRotorModel, OffRotorResult, flight_condition, identify_off_rotor
+from .forward import (SingleRotorForward, forward_bode_overlay, forward_comparison_table, forward_condition,
+                      identify_forward_flight, pitt_peters_forward)
+from .wake_distortion import (KR_CONTROLS, WakeDistortionResult, identify_wake_distortion, kr_frequency_response,
+                              wake_distortion_from_runs)
+
+STRUCTURES[SingleRotorForward.key] = SingleRotorForward
 
 STRUCTURES[CoaxialForward12State.key] = CoaxialForward12State
 
@@ -41,4 +50,8 @@ __all__ = ["CoaxialForward12State", "COAXIAL_DIRECTIONS", "FrameError", "convert
            "MultisineSettings", "identify_inflow_multisine", "record_revolutions",
            "INFLOW_STATES", "VELOCITY_COMPONENTS", "OffRotorError", "OffRotorSettings", "OffRotorSurface",
            "fit_off_rotor", "gain_delay_structure", "horizontal_tail", "wake_exposure", "wing_under_hub",
-           "OffRotorModel", "OffRotorResult", "flight_condition", "identify_off_rotor"]
+           "OffRotorModel", "OffRotorResult", "flight_condition", "identify_off_rotor",
+           "SingleRotorForward", "forward_bode_overlay", "forward_comparison_table", "forward_condition",
+           "identify_forward_flight", "pitt_peters_forward",
+           "KR_CONTROLS", "WakeDistortionResult", "identify_wake_distortion", "kr_frequency_response",
+           "wake_distortion_from_runs"]

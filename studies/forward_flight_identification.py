@@ -1,0 +1,150 @@
+"""Single rotor in forward flight (mu = 0.1, 0.2; §4.4) and wake distortion K_R(omega) in hover (§4.7).
+
+Through the library (:mod:`aircraft.identification.forward`,
+:mod:`aircraft.identification.wake_distortion`):
+
+1. per advance ratio, :func:`identify_forward_flight` (wind-tunnel wake trim at
+   C_T = 0.0061 and zero hub moments, shaft at ``--alpha``, flapping held; one sweep
+   per swashplate control; joint input-output lambda/C; fit of the Eq. 4.3
+   structure; automatic reduction; doublet verification beside the noise floor);
+   the coefficients beside the linearised Pitt-Peters and the printed Eqs. 4.7-4.8,
+   the cost table beside the printed costs (Figs. 4.12-4.21), a Bode overlay;
+2. in hover, :func:`identify_wake_distortion`: swashplate and tip-path-plane
+   sweeps, joint input-output lambda/(C, beta_dot), K_R(omega) of Eq. 4.19 and
+   its constant values beside the analytical 1.5 (Ref. 82).
+
+Writes under ``results/forward_flight_identification/``: ``coefficients.csv``,
+``cost_table.csv``, ``parameters_mu*.csv``, ``verification_mu*.csv``,
+``bode_mu*.png``, ``kr_omega.csv``, ``kr_constants.csv``, ``kr.png``,
+``wall_times.csv``.
+
+Run: ``rotorwake forward-flight-identification [--wake coarse]`` (``--small``: a tiny
+wake and short sweeps at mu = 0.1 only, for the tests).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from aircraft.configs import uh60_single_rotor
+from aircraft.identification import (IdentificationSettings, forward_bode_overlay, forward_comparison_table,
+                                     identify_forward_flight, identify_wake_distortion)
+from aircraft.wake import WakeSettings
+
+#: Printed costs of the fits (figure captions of §4.4; reference data). Fig. 4.20's caption
+#: repeats Fig. 4.19's 55.5 while its text says "a cost of 20".
+DISSERTATION_COSTS = {
+    (0.1, "lam0", "CT"): 12.2, (0.1, "lam1s", "CL"): 4.9, (0.1, "lam1c", "CM"): 120.1,
+    (0.1, "lam1c", "CT"): 80.5, (0.1, "lam0", "CM"): 259.4,
+    (0.2, "lam0", "CT"): 18.1, (0.2, "lam1s", "CL"): 19.7, (0.2, "lam1c", "CM"): 55.5,
+    (0.2, "lam1c", "CT"): 55.5, (0.2, "lam0", "CM"): 1447.0,
+}
+
+WAKES = {
+    "default": WakeSettings(),
+    "coarse": WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6),
+    "small": WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=4),
+}
+
+
+def _settings(wake, small):
+    if small:   # 14 s sweeps from 2 rad/s: the shortest record the chirp-z windows accept
+        return IdentificationSettings(wake=WAKES[wake], sweep_s=14.0, w_min=2.0, w_max=20.0, fit_range=(2.0, 18.0),
+                                      doublet_s=2.0, noise_floor_s=2.0)
+    return IdentificationSettings(wake=WAKES[wake])
+
+
+def cost_table(models):
+    """Our cost per response beside the printed costs, and J_ave, per mu."""
+    rows = []
+    for mu, m in sorted(models.items()):
+        for r in m.cost_table.itertuples():
+            rows.append({"mu": mu, "output": r.output, "input": r.input, "J": r.J,
+                         "J_dissertation": DISSERTATION_COSTS.get((mu, r.output, r.input), float("nan"))})
+        printed = [v for (u, *_), v in DISSERTATION_COSTS.items() if u == mu]
+        rows.append({"mu": mu, "output": "J_ave", "input": "", "J": m.J_ave,
+                     "J_dissertation": sum(printed) / len(printed) if printed else float("nan")})
+    return pd.DataFrame(rows)
+
+
+def run_study(wake="default", *, mus=(0.1, 0.2), alpha=0.0, ct=0.0061, small=False, kr=True,
+              out_dir="results/forward_flight_identification", n_jobs=2, cache_dir="default", progress=True):
+    """Run the study; return ``(coefficients, costs, kr_result or None)``."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    cfg = uh60_single_rotor()
+    settings = _settings(wake, small)
+    walls, models = [], {}
+    for mu in mus:
+        t0 = time.perf_counter()
+        m = identify_forward_flight(cfg, mu, alpha=alpha, ct=ct, settings=settings, n_jobs=n_jobs,
+                                    cache_dir=cache_dir, progress=progress)
+        walls.append({"data_set": f"mu = {mu:g}: 3 sweeps + doublet + zero input, fit, reduction",
+                      "wall_s": time.perf_counter() - t0})
+        models[mu] = m
+        tag = f"mu{mu:g}"
+        m.parameters.to_csv(out / f"parameters_{tag}.csv", index=False)
+        m.verification_table.to_csv(out / f"verification_{tag}.csv", index=False)
+        forward_bode_overlay(m, mu, alpha=alpha).savefig(out / f"bode_{tag}.png", dpi=80)
+    coefficients = forward_comparison_table(models, alpha=alpha)
+    costs = cost_table(models)
+    coefficients.to_csv(out / "coefficients.csv", index=False)
+    costs.to_csv(out / "cost_table.csv", index=False)
+    kr_res = None
+    if kr:
+        t0 = time.perf_counter()
+        kr_res = identify_wake_distortion(cfg, ct=ct, settings=settings, n_jobs=n_jobs, cache_dir=cache_dir,
+                                          progress=progress)
+        walls.append({"data_set": "hover K_R: 3 swashplate + 2 tip-path-plane sweeps",
+                      "wall_s": time.perf_counter() - t0})
+        kr_res.to_pandas().to_csv(out / "kr_omega.csv", index=False)
+        kr_res.constants().to_csv(out / "kr_constants.csv", index=False)
+        kr_res.plot().savefig(out / "kr.png", dpi=80)
+    walls = pd.DataFrame(walls)
+    walls.to_csv(out / "wall_times.csv", index=False)
+    fmt = lambda v: f"{v:.4g}"   # noqa: E731
+    ws = settings.wake_settings
+    print(f"wake '{wake}': {math.degrees(ws.azimuth_step):g} deg steps, {ws.wake_revolutions:g} revs, "
+          f"{ws.n_elements} elements; sweeps {settings.sweep_s:g} s; shaft alpha {math.degrees(alpha):g} deg")
+    for mu, m in models.items():
+        o = m.trim.outputs
+        print(f"\n== mu = {mu:g}: trim C_T {o['CT']:.5f}, lam0 {o['lam0']:.5f}; J_ave {m.J_ave:.1f}; "
+              f"{'trusted' if m.trusted else 'NOT trusted'} ==")
+        print(m.verification_table.to_string(index=False, float_format=fmt))
+    print("\ncoefficients (ours | linearised Pitt-Peters | dissertation Eqs. 4.7-4.8, printed):")
+    print(coefficients.to_string(index=False, float_format=fmt))
+    print("\ncosts (ours | dissertation figure captions):")
+    print(costs.to_string(index=False, float_format=fmt))
+    if kr_res is not None:
+        print("\n" + kr_res.summary())
+    print("\nwall times on this machine:")
+    print(walls.to_string(index=False, float_format=lambda v: f"{v:.0f}"))
+    print(f"tables and figures in {out}/")
+    return coefficients, costs, kr_res
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--wake", choices=sorted(WAKES), default="default",
+                        help="wake resolution (coarse: 15 deg steps, 2 revs, 6 elements)")
+    parser.add_argument("--mu", type=float, nargs="+", default=[0.1, 0.2], help="advance ratios")
+    parser.add_argument("--alpha", type=float, default=0.0, help="shaft angle of attack [deg], positive back")
+    parser.add_argument("--no-kr", action="store_true", help="skip the hover K_R sweeps")
+    parser.add_argument("--small", action="store_true",
+                        help="tiny wake, 14 s sweeps (tests; implies --wake small unless given)")
+    parser.add_argument("--out", default="results/forward_flight_identification")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--no-cache", action="store_true", help="do not read or write the wake cache")
+    args = parser.parse_args(argv)
+    wake = "small" if args.small and args.wake == "default" else args.wake
+    run_study(wake, mus=tuple(args.mu), alpha=math.radians(args.alpha), small=args.small, kr=not args.no_kr,
+              out_dir=args.out, n_jobs=args.jobs, cache_dir=None if args.no_cache else "default",
+              progress=not args.small)
+
+
+if __name__ == "__main__":
+    main()
