@@ -10,6 +10,8 @@
     store.py       versioned model files (aircraft/data/models/*.json), ModelRecord
     regenerate.py  recipes of the shipped models; ``python -m aircraft.identification.regenerate``
     synthetic.py   synthetic-truth data generated with scipy (independent of flightid)
+    design_space.py  identify_design_space: the coaxial 6-state model over rotor spacing x
+                   thrust, DesignSpaceResult (table, plot, .schedule() -> ScheduledInflow)
 
 The wake (numba) is imported only when a pipeline runs.
 """
@@ -19,9 +21,12 @@ from .structures import (STRUCTURES, Coaxial6State, Coaxial12State, InflowStruct
 from .store import SCHEMA, ModelFileError, ModelRecord, load_record, shipped_models
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
                        identification_hash, identify_inflow)
+from .design_space import (KEY_PARAMETERS, DesignPoint, DesignSpaceError, DesignSpaceResult,
+                           identify_design_space, spaced_config)
 
 __all__ = ["COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
            "STRUCTURES", "Coaxial6State", "Coaxial12State", "InflowStructure", "SingleRotor3State",
            "get_structure", "SCHEMA", "ModelFileError", "ModelRecord", "load_record", "shipped_models",
            "PIPELINE_VERSION", "IdentificationSettings", "IdentifiedModel", "PipelineError",
-           "identification_hash", "identify_inflow"]
+           "identification_hash", "identify_inflow", "KEY_PARAMETERS", "DesignPoint", "DesignSpaceError",
+           "DesignSpaceResult", "identify_design_space", "spaced_config"]
