@@ -37,12 +37,14 @@ COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_e
 TINY = WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=5)
 
 
-def settings_for(small=False, sweep_s=30.0):
-    """The identification settings of the study (``small``: tiny wake, 12 s sweeps from 1.5 rad/s)."""
+def settings_for(small=False, sweep_s=30.0, w_min=0.7):
+    """The identification settings of the study: coarse wake, ``sweep_s`` [s] sweeps from
+    ``w_min`` [rad/s], fit from max(1, w_min) to 25 rad/s (``small``: tiny wake, 12 s sweeps
+    from 1.5 rad/s)."""
     if small:
         return IdentificationSettings(wake=TINY, sweep_s=12.0, w_min=1.5, fit_range=(1.5, 20.0), doublet_s=2.0,
                                       noise_floor_s=2.0)
-    return IdentificationSettings(wake=COARSE, sweep_s=sweep_s)
+    return IdentificationSettings(wake=COARSE, sweep_s=sweep_s, w_min=w_min, fit_range=(max(1.0, w_min), 25.0))
 
 
 def run_study(spacings, cts, settings, *, out_dir="results/coaxial_design_space", n_jobs=2, scheduler=None,
@@ -88,6 +90,7 @@ def main(argv=None):
     parser.add_argument("--spacings", type=_floats, default=SPACINGS, help="rotor spacings h/R, comma-separated")
     parser.add_argument("--cts", type=_floats, default=THRUSTS, help="system thrust coefficients, comma-separated")
     parser.add_argument("--sweep-s", type=float, default=30.0, help="sweep record length [s]")
+    parser.add_argument("--w-min", type=float, default=0.7, help="lowest sweep frequency [rad/s]")
     parser.add_argument("--small", action="store_true",
                         help="tiny wake, 12 s sweeps, h/R 0.14,0.20 x C_T 0.0096 (for the tests)")
     parser.add_argument("--n-jobs", type=int, default=2, help="wake worker processes")
@@ -99,7 +102,7 @@ def main(argv=None):
     if args.small:
         spacings = (0.14, 0.20) if args.spacings == SPACINGS else args.spacings
         cts = (0.0096,) if args.cts == THRUSTS else args.cts
-    run_study(spacings, cts, settings_for(args.small, args.sweep_s), out_dir=args.out, n_jobs=args.n_jobs,
+    run_study(spacings, cts, settings_for(args.small, args.sweep_s, args.w_min), out_dir=args.out, n_jobs=args.n_jobs,
               scheduler=args.scheduler)
 
 
