@@ -91,7 +91,7 @@ STUDIES = {s.command: s for s in (
           default_out="results/coaxial_wake_identification",
           cached_note="wake runs cached under .cache/wake (about 6 min after)"),
     Study("coaxial-design-space", "studies.coaxial_design_space",
-          "6-state coaxial inflow model across rotor spacing x thrust, scheduled (issue 14, item 4)", 40.0,
+          "6-state coaxial inflow model across rotor spacing x thrust, scheduled (issue 14, item 4)", 25.0,
           default_out="results/coaxial_design_space",
           cached_note="wake runs cached under .cache/wake (about 3 min after)"),
     Study("coaxial-hover-poles", "studies.coaxial_hover_poles",

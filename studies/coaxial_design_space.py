@@ -15,8 +15,8 @@ revolutions, 6 elements). Writes to ``results/coaxial_design_space/``:
   load it with ``ScheduledInflow.from_file(path, spacing, ct)``), unless a point failed;
 * ``timing.csv``         wall time per point and in all.
 
-Run: ``python -m studies.coaxial_design_space`` (4 spacings x 2 thrusts, 30 s sweeps;
-minutes per point on 2 cores the first time, seconds once cached);
+Run: ``python -m studies.coaxial_design_space`` (4 spacings x 2 thrusts, 45 s sweeps from
+0.7 rad/s; about 3 min per point on 2 idle cores the first time, the fits only once cached);
 ``--small``: a tiny wake on 2 spacings x 1 thrust, for the tests.
 """
 from __future__ import annotations
@@ -37,12 +37,13 @@ COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_e
 TINY = WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=5)
 
 
-def settings_for(small=False, sweep_s=30.0, w_min=0.7):
+def settings_for(small=False, sweep_s=45.0, w_min=0.7):
     """The identification settings of the study: coarse wake, ``sweep_s`` [s] sweeps from
     ``w_min`` [rad/s], fit from max(1, w_min) to 25 rad/s (``small``: tiny wake, 12 s sweeps
-    from 1.5 rad/s)."""
+    from 2 rad/s)."""
     if small:
-        return IdentificationSettings(wake=TINY, sweep_s=12.0, w_min=1.5, fit_range=(1.5, 20.0), doublet_s=2.0,
+        # a 12 s sweep makes a 14 s record, whose longest window (7 s) resolves 2 rad/s, not 1.5
+        return IdentificationSettings(wake=TINY, sweep_s=12.0, w_min=2.0, fit_range=(2.0, 20.0), doublet_s=2.0,
                                       noise_floor_s=2.0)
     return IdentificationSettings(wake=COARSE, sweep_s=sweep_s, w_min=w_min, fit_range=(max(1.0, w_min), 25.0))
 
@@ -89,10 +90,11 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--spacings", type=_floats, default=SPACINGS, help="rotor spacings h/R, comma-separated")
     parser.add_argument("--cts", type=_floats, default=THRUSTS, help="system thrust coefficients, comma-separated")
-    parser.add_argument("--sweep-s", type=float, default=30.0, help="sweep record length [s]")
+    parser.add_argument("--sweep-s", type=float, default=45.0,
+                        help="sweep length [s]; the longest analysis window, half the record, must resolve --w-min (45 s: 0.53 rad/s)")
     parser.add_argument("--w-min", type=float, default=0.7, help="lowest sweep frequency [rad/s]")
     parser.add_argument("--small", action="store_true",
-                        help="tiny wake, 12 s sweeps, h/R 0.14,0.20 x C_T 0.0096 (for the tests)")
+                        help="tiny wake, 12 s sweeps from 2 rad/s, h/R 0.14,0.20 x C_T 0.0096 (for the tests)")
     parser.add_argument("--n-jobs", type=int, default=2, help="wake worker processes")
     parser.add_argument("--scheduler", default=None,
                         help="Dask scheduler address, passed to identify_inflow where it accepts one")

@@ -359,7 +359,8 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
         Passed on to :func:`identify_inflow` where it accepts one (Dask executor).
     on_error : {"record", "raise"}
         ``"record"``: a point whose identification fails (trim, excitation,
-        unstable model) is kept with its error and the others go on;
+        records too short for the band, unstable model) is kept with its error
+        and the others go on;
         ``"raise"``: the first failure raises.
 
     Returns
@@ -370,7 +371,7 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
     ------
     DesignSpaceError
         Bad grid, ``on_error`` or ``scheduler`` (before any wake run).
-    PipelineError, aircraft.wake.WakeTrimError, aircraft.inflow.InflowError
+    PipelineError, aircraft.wake.WakeTrimError, aircraft.inflow.InflowError, flightid.IdentificationError
         With ``on_error="raise"``, the first failed point.
     """
     from aircraft.inflow import InflowError
@@ -383,6 +384,7 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
     extra = _scheduler_kwargs(scheduler)
     configs = {s: spaced_config(config, s) for s in spacings}   # validates config before any run
     from aircraft.wake.trim import WakeTrimError     # the wake (numba) only once the input is valid
+    from flightid import IdentificationError         # e.g. records too short for the sweep band
     t0 = time.perf_counter()
     points = []
     for s in spacings:
@@ -398,7 +400,7 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
                                         cache_dir=cache_dir, progress=progress, **extra)
                 model.to_inflow()        # an unstable identified model cannot be scheduled: say so here
                 points.append(DesignPoint(s, c, model, None, time.perf_counter() - t1))
-            except (PipelineError, WakeTrimError, InflowError, np.linalg.LinAlgError) as err:
+            except (PipelineError, WakeTrimError, InflowError, IdentificationError, np.linalg.LinAlgError) as err:
                 if on_error == "raise":
                     raise
                 # the model (if any) stays for the table; the point is left out of a schedule
