@@ -25,6 +25,8 @@ STUDIES = [
     ("Coaxial rotor: identification from our free wake (Ch. 5)", "coaxial_wake_identification",
      "coaxial_wake_identification", ["parameters.csv", "verification.csv"],
      "rotorwake coaxial-wake-identification"),
+    ("Coaxial rotor: design space of rotor spacing and thrust (recommendation 2)", "coaxial_design_space",
+     "coaxial_design_space", ["summary.csv"], "rotorwake coaxial-design-space"),
     ("Coaxial aircraft: hover poles (Tables 7.1/7.2)", "coaxial_hover_poles", "coaxial_hover_poles",
      ["poles_clr.csv", "poles_id6.csv"], "rotorwake coaxial-hover-poles"),
     ("Pitt-Peters check (Tables 4.1-4.2, Eqs. 4.7-4.8)", "pitt_peters_hover_check", "pitt_peters_hover_check",

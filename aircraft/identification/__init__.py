@@ -19,6 +19,8 @@
     forward.py     single rotor in forward flight (§4.4): SingleRotorForward (Eq. 4.3),
                    identify_forward_flight, comparison with Pitt-Peters and Eqs. 4.7-4.8
     wake_distortion.py  K_R(omega) in hover from tip-path-plane sweeps (§4.7, Fig. 4.39)
+    design_space.py  identify_design_space: the coaxial 6-state model over rotor spacing x
+                   thrust, DesignSpaceResult (table, plot, .schedule() -> ScheduledInflow)
 
 The wake (numba) is imported only when a pipeline runs.
 """
@@ -37,6 +39,8 @@ from .forward import (SingleRotorForward, forward_bode_overlay, forward_comparis
                       identify_forward_flight, pitt_peters_forward)
 from .wake_distortion import (KR_CONTROLS, WakeDistortionResult, identify_wake_distortion, kr_frequency_response,
                               wake_distortion_from_runs)
+from .design_space import (KEY_PARAMETERS, DesignPoint, DesignSpaceError, DesignSpaceResult,
+                           identify_design_space, spaced_config)
 
 STRUCTURES[SingleRotorForward.key] = SingleRotorForward
 
@@ -54,4 +58,6 @@ __all__ = ["CoaxialForward12State", "COAXIAL_DIRECTIONS", "FrameError", "convert
            "SingleRotorForward", "forward_bode_overlay", "forward_comparison_table", "forward_condition",
            "identify_forward_flight", "pitt_peters_forward",
            "KR_CONTROLS", "WakeDistortionResult", "identify_wake_distortion", "kr_frequency_response",
-           "wake_distortion_from_runs"]
+           "wake_distortion_from_runs",
+           "KEY_PARAMETERS", "DesignPoint", "DesignSpaceError",
+           "DesignSpaceResult", "identify_design_space", "spaced_config"]

@@ -1,0 +1,112 @@
+"""Coaxial 6-state hover inflow model across rotor spacing and thrust (design-space study).
+
+Thin study over :func:`aircraft.identification.identify_design_space`: the coaxial
+of :func:`aircraft.configs.coaxial_compound` with its lower rotor moved to each
+spacing h/R, trimmed in hover at each system C_T (shared equally, torques
+balanced), identified from our free wake (six sweeps, doublet, zero-input run per
+point, through the wake executor, cached) on the COARSE wake (15 deg steps, 2
+revolutions, 6 elements). Writes to ``results/coaxial_design_space/``:
+
+* ``design_space.csv``   key coefficients per point (cross-rotor M and Lbar, diagonal
+  Lbar) with CR %, insensitivity %, J_ave, trusted, trim thrusts, wall time;
+* ``summary.csv``        one row per point (wide);
+* ``coefficients.png``   coefficients against spacing, one line per thrust;
+* ``schedule.json``      the interpolated model (:class:`aircraft.inflow.ScheduledInflow`;
+  load it with ``ScheduledInflow.from_file(path, spacing, ct)``), unless a point failed;
+* ``timing.csv``         wall time per point and in all.
+
+Run: ``python -m studies.coaxial_design_space`` (4 spacings x 2 thrusts, 45 s sweeps from
+0.7 rad/s; about 3 min per point on 2 idle cores the first time, the fits only once cached);
+``--small``: a tiny wake on 2 spacings x 1 thrust, for the tests.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from aircraft.identification import IdentificationSettings, identify_design_space
+from aircraft.identification.design_space import SPACINGS, THRUSTS
+from aircraft.wake import WakeSettings
+
+COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
+# --small: the tiny wake of tests/test_identification_pipeline.py (20 deg, 1.5 revs, 5 elements)
+TINY = WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=5)
+
+
+def settings_for(small=False, sweep_s=45.0, w_min=0.7):
+    """The identification settings of the study: coarse wake, ``sweep_s`` [s] sweeps from
+    ``w_min`` [rad/s], fit from max(1, w_min) to 25 rad/s (``small``: tiny wake, 12 s sweeps
+    from 2 rad/s)."""
+    if small:
+        # a 12 s sweep makes a 14 s record, whose longest window (7 s) resolves 2 rad/s, not 1.5
+        return IdentificationSettings(wake=TINY, sweep_s=12.0, w_min=2.0, fit_range=(2.0, 20.0), doublet_s=2.0,
+                                      noise_floor_s=2.0)
+    return IdentificationSettings(wake=COARSE, sweep_s=sweep_s, w_min=w_min, fit_range=(max(1.0, w_min), 25.0))
+
+
+def run_study(spacings, cts, settings, *, out_dir="results/coaxial_design_space", n_jobs=2, scheduler=None,
+              verbose=True):
+    """Identify over the grid, write the tables, figure and schedule; return the DesignSpaceResult."""
+    t0 = time.perf_counter()
+    result = identify_design_space(spacings, cts, settings=settings, n_jobs=n_jobs, scheduler=scheduler,
+                                   progress=verbose)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    table = result.to_pandas()
+    table.to_csv(out / "design_space.csv", index=False)
+    summary = result.summary_table()
+    summary.to_csv(out / "summary.csv", index=False)
+    result.plot().savefig(out / "coefficients.png", dpi=90)
+    wall = time.perf_counter() - t0
+    timing = pd.DataFrame([{"spacing": p.spacing, "ct": p.ct, "wall_s": round(p.wall_s, 1)} for p in result.points]
+                          + [{"spacing": None, "ct": None, "wall_s": round(wall, 1)}])
+    timing.to_csv(out / "timing.csv", index=False)
+    schedule_note = "no schedule (failed points)"
+    if not result.failed:
+        result.schedule().save(out / "schedule.json")
+        schedule_note = f"schedule in {out / 'schedule.json'}"
+    if verbose:
+        fmt = lambda v: f"{v:.4g}"   # noqa: E731
+        ws = settings.wake_settings
+        print("== Coaxial design space: 6-state hover model over rotor spacing x thrust ==")
+        print(f"wake: {math.degrees(ws.azimuth_step):g} deg steps, {ws.wake_revolutions:g} revs, "
+              f"{ws.n_elements} elements; sweeps {settings.sweep_s:g} s from {settings.w_min:g} rad/s")
+        print(summary.to_string(index=False, float_format=fmt))
+        for p in result.failed:
+            print(f"FAILED h/R {p.spacing:g}, C_T {p.ct:g}: {p.error}")
+        print(f"{schedule_note}; tables and figure in {out}/  (wall {wall:.0f} s)")
+    return result
+
+
+def _floats(text):
+    return tuple(float(v) for v in text.split(","))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--spacings", type=_floats, default=SPACINGS, help="rotor spacings h/R, comma-separated")
+    parser.add_argument("--cts", type=_floats, default=THRUSTS, help="system thrust coefficients, comma-separated")
+    parser.add_argument("--sweep-s", type=float, default=45.0,
+                        help="sweep length [s]; the longest analysis window, half the record, must resolve --w-min (45 s: 0.53 rad/s)")
+    parser.add_argument("--w-min", type=float, default=0.7, help="lowest sweep frequency [rad/s]")
+    parser.add_argument("--small", action="store_true",
+                        help="tiny wake, 12 s sweeps from 2 rad/s, h/R 0.14,0.20 x C_T 0.0096 (for the tests)")
+    parser.add_argument("--n-jobs", type=int, default=2, help="wake worker processes")
+    parser.add_argument("--scheduler", default=None,
+                        help="Dask scheduler address, passed to identify_inflow where it accepts one")
+    parser.add_argument("--out", default="results/coaxial_design_space")
+    args = parser.parse_args(argv)
+    spacings, cts = args.spacings, args.cts
+    if args.small:
+        spacings = (0.14, 0.20) if args.spacings == SPACINGS else args.spacings
+        cts = (0.0096,) if args.cts == THRUSTS else args.cts
+    run_study(spacings, cts, settings_for(args.small, args.sweep_s, args.w_min), out_dir=args.out, n_jobs=args.n_jobs,
+              scheduler=args.scheduler)
+
+
+if __name__ == "__main__":
+    main()
