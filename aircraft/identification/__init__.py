@@ -16,6 +16,8 @@
     off_rotor_identify.py  identify_off_rotor: wake runs -> vbar/lam -> Eq. 2.39/2.40 -> doublet TIC
     coaxial_forward.py  CoaxialForward12State: the fully coupled 200 kt structure
                    (Eqs. 6.4-6.7, 6.12-6.13), registered in STRUCTURES
+    coaxial_200kt.py  the 200 kt condition and trim request, identify_coaxial_forward
+                   (bounded reduction), isolated_rotor_check (Figs. 7.7-7.10)
     forward.py     single rotor in forward flight (§4.4): SingleRotorForward (Eq. 4.3),
                    identify_forward_flight, comparison with Pitt-Peters and Eqs. 4.7-4.8
     wake_distortion.py  K_R(omega) in hover from tip-path-plane sweeps (§4.7, Fig. 4.39)
@@ -28,6 +30,8 @@ from .frames import COAXIAL_DIRECTIONS, FrameError, convert_frames, frame_signs
 from .structures import (STRUCTURES, Coaxial6State, Coaxial12State, InflowStructure, SingleRotor3State,
                          get_structure)
 from .coaxial_forward import CoaxialForward12State
+from .coaxial_200kt import (IsolatedRotorCheck, forward_flight_condition, forward_trim_request,
+                            identify_coaxial_forward, isolated_rotor_check)
 from .store import SCHEMA, ModelFileError, ModelRecord, load_record, shipped_models
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
                        identification_hash, identify_inflow)
@@ -46,7 +50,8 @@ STRUCTURES[SingleRotorForward.key] = SingleRotorForward
 
 STRUCTURES[CoaxialForward12State.key] = CoaxialForward12State
 
-__all__ = ["CoaxialForward12State", "COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
+__all__ = ["CoaxialForward12State", "IsolatedRotorCheck", "forward_flight_condition", "forward_trim_request",
+           "identify_coaxial_forward", "isolated_rotor_check", "COAXIAL_DIRECTIONS", "FrameError", "convert_frames", "frame_signs",
            "STRUCTURES", "Coaxial6State", "Coaxial12State", "InflowStructure", "SingleRotor3State",
            "get_structure", "SCHEMA", "ModelFileError", "ModelRecord", "load_record", "shipped_models",
            "PIPELINE_VERSION", "IdentificationSettings", "IdentifiedModel", "PipelineError",
