@@ -99,7 +99,7 @@ STUDIES = {s.command: s for s in (
           cached_note="wake runs cached under .cache/wake (about 6 min after)"),
     Study("coaxial-design-space", "studies.coaxial_design_space",
           "6-state coaxial inflow model across rotor spacing x thrust, scheduled (issue 14, item 4)", 25.0,
-          default_out="results/coaxial_design_space",
+          default_out="results/coaxial_design_space", in_results=False,   # not computed yet
           cached_note="wake runs cached under .cache/wake (about 3 min after)"),
     Study("coaxial-hover-poles", "studies.coaxial_hover_poles",
           "coaxial aircraft hover poles with two inflow models (Tables 7.1/7.2)", 0.5,
@@ -110,7 +110,7 @@ STUDIES = {s.command: s for s in (
     Study("coaxial-forward-flight", "studies.coaxial_forward_flight",
           "coaxial at 200 kt: Eq. 6.5 inflow model from our coarse wake (Table 6.3, Eqs. 6.12-6.13) and "
           "the bare airframe against Isolated Rotors (Figs. 7.7-7.10)", 30.0,
-          default_out="results/coaxial_forward_flight",
+          default_out="results/coaxial_forward_flight", in_results=False,   # not computed yet
           cached_note="wake runs cached under .cache/wake (the fit and reduction remain)"),
     Study("rotor-truth-check", "studies.rotor_truth_check",
           "rotor-level truth check: free wake with free flapping vs blade-element rotor with "
