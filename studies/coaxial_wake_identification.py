@@ -15,13 +15,13 @@ of the low-frequency lambda/C), reduced and verified on an upper-collective
 doublet beside the wake's noise floor. Tables beside Table 5.1 and Eq. 5.3 (the
 latter converted to our frames, :func:`aircraft.inflow.published.in_rotor_frames`)
 go to ``results/coaxial_wake_identification/``; :func:`identified_inflow` returns
-the model as an :class:`aircraft.inflow.IdentifiedInflow` (the main job's
-``--identified wake``).
+the 6-state model as an :class:`aircraft.inflow.IdentifiedInflow`.
 
 Run: ``python -m studies.coaxial_wake_identification`` (default wake resolution;
-about 7-9 minutes on 2 cores the first time, seconds once cached). The shipped
-file ``aircraft/data/models/coaxial_hover_6state.json`` is written by
-``python -m aircraft.identification.regenerate coaxial_hover_6state``.
+about 30 minutes of wake runs on 2 cores the first time, then about 10 minutes of
+fitting). The shipped files ``aircraft/data/models/coaxial_hover_6state.json`` and
+``coaxial_hover_12state.json`` are written by
+``python -m aircraft.identification.regenerate coaxial_hover_6state coaxial_hover_12state``.
 """
 from __future__ import annotations
 
@@ -49,7 +49,7 @@ TABLE_6_1 = {("lam0_U", "CT_U"): 5.0, ("lam0_L", "CT_U"): 11.1, ("lam1c_U", "CM_
              ("lam0_U", "CT_L"): 3.6, ("lam0_L", "CT_L"): 5.9, ("lam1c_U", "CM_L"): 158.6,
              ("lam1c_L", "CM_L"): 108.9, ("lam1s_U", "CL_L"): 158.6, ("lam1s_L", "CL_L"): 108.9}
 STRUCTURE = Coaxial6State("rotor")
-STRUCTURE_12 = Coaxial12State("rotor")
+STRUCTURE_12 = Coaxial12State("rotor", delays=True)   # the shipped structure (regenerate.RECIPES)
 CT_SYSTEM = COAXIAL_HOVER_6STATE.condition["CT_U"] + COAXIAL_HOVER_6STATE.condition["CT_L"]
 
 

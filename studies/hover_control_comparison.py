@@ -139,8 +139,8 @@ def figures(cases, out):
     axes[0, 1].legend(fontsize=7)
     fig.savefig(out / "frequency_responses.png", dpi=90)
 
-    fig = Figure(figsize=(11, 7), constrained_layout=True)
-    axes = fig.subplots(3, 3, sharex=True)
+    fig = Figure(figsize=(11, 2.4 * len(names) + 0.4), constrained_layout=True)
+    axes = fig.subplots(len(names), 3, sharex=True, squeeze=False)   # one row per case, none empty
     for k, name in enumerate(names):
         d = cases[name]
         imp = d.stick_impulse(duration=6.0, width=0.5, amplitude=np.radians(5.0))
@@ -364,6 +364,8 @@ def main(argv=None):
     if robust:
         hq_window(list(robust.values()), specs_d, labels=list(robust_plants)).savefig(out / "hq_window_robust.png",
                                                                                       dpi=80)
+    else:                  # no robust design: no figure of an earlier one left behind
+        (out / "hq_window_robust.png").unlink(missing_ok=True)
 
     fmt = lambda v: f"{v:.4g}"   # noqa: E731
     pd.set_option("display.width", 200)
