@@ -99,7 +99,7 @@ STUDIES = {s.command: s for s in (
           cached_note="wake runs cached under .cache/wake (about 6 min after)"),
     Study("coaxial-design-space", "studies.coaxial_design_space",
           "6-state coaxial inflow model across rotor spacing x thrust, scheduled (issue 14, item 4)", 25.0,
-          default_out="results/coaxial_design_space", in_results=False,   # not computed yet
+          default_out="results/coaxial_design_space",
           cached_note="wake runs cached under .cache/wake (about 3 min after)"),
     Study("coaxial-hover-poles", "studies.coaxial_hover_poles",
           "coaxial aircraft hover poles with two inflow models (Tables 7.1/7.2)", 0.5,

@@ -222,7 +222,7 @@ def test_study_small_end_to_end(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
     out = tmp_path / "out"
     for name in ("cost_table.csv", "parameters.csv", "verification.csv", "trim.csv", "responses.csv",
-                 "differences.csv", "verdicts.csv", "poles.csv", "bode_fit.png", "bare_airframe_200kt.png"):
+                 "differences.csv", "verdicts.csv", "poles.csv", "verification.png", "bare_airframe_200kt.png"):
         assert (out / name).stat().st_size > 0, name
     cost = pd.read_csv(out / "cost_table.csv")
     assert len(cost) == 37 and cost.J_table_6_3.notna().all()
