@@ -2,7 +2,7 @@
 #   make study   -> creates .venv if needed, installs the package, runs the main job
 #   make test    -> creates .venv if needed, installs the package + test extra, runs pytest
 # Others:
-#   make results        regenerate every committed results/ folder (about 20 min on 2 cores)
+#   make results        regenerate every committed results/ folder with its recorded options (~1 h warm cache)
 #   make check-results  say which committed results the current code no longer produces
 #   make docs           the Sphinx site in docs/_build/html (warnings are errors)
 PYTHON ?= python3

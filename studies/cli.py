@@ -91,8 +91,8 @@ STUDIES = {s.command: s for s in (
           "off-rotor induced velocity at the tail and a wing under the hub, hover and mu = 0.1 "
           "(Eqs. 2.39-2.40, §4.6)", 25.0,
           default_out="results/off_rotor_models",
-          cached_note="wake runs cached under .cache/wake; --coarse about 8 min, --small under a minute",
-          in_results=False),
+          cached_note="wake runs cached under .cache/wake; --small under a minute",
+          variants={"--coarse": (5.0, ("{out}",), "wake runs cached under .cache/wake")}),
     Study("coaxial-wake-identification", "studies.coaxial_wake_identification",
           "6- and 12-state coaxial inflow models identified from our free wake (Eq. 5.3, §6.3)", 45.0,
           default_out="results/coaxial_wake_identification",
@@ -110,8 +110,10 @@ STUDIES = {s.command: s for s in (
     Study("coaxial-forward-flight", "studies.coaxial_forward_flight",
           "coaxial at 200 kt: Eq. 6.5 inflow model from our coarse wake (Table 6.3, Eqs. 6.12-6.13) and "
           "the bare airframe against Isolated Rotors (Figs. 7.7-7.10)", 30.0,
-          default_out="results/coaxial_forward_flight", in_results=False,   # not computed yet
-          cached_note="wake runs cached under .cache/wake (the fit and reduction remain)"),
+          default_out="results/coaxial_forward_flight",
+          cached_note="wake runs cached under .cache/wake (the fit and reduction remain)",
+          variants={"--near-wake-only": (10.0, ("{out}",), "the 72-parameter near-wake half; wake runs cached "
+                                                            "under .cache/wake")}),
     Study("rotor-truth-check", "studies.rotor_truth_check",
           "rotor-level truth check: free wake with free flapping vs blade-element rotor with "
           "identified / Dynamic-Climb / Pitt-Peters inflow (§7.2.2)", 10.0,
@@ -119,8 +121,9 @@ STUDIES = {s.command: s for s in (
     Study("forward-flight-identification", "studies.forward_flight_identification",
           "single rotor at mu = 0.1/0.2 (Eqs. 4.7-4.8 structure) vs Pitt-Peters, and K_R(omega) in hover "
           "(§4.4, §4.7)", 20.0, default_out="results/forward_flight_identification",
-          cached_note="wake runs cached under .cache/wake", in_results=False,
-          variants={"--wake=coarse": (4.0, ("{out}",), "wake runs cached under .cache/wake")}),
+          cached_note="wake runs cached under .cache/wake",
+          variants={"--wake=coarse": (4.0, ("{out}",), "wake runs cached under .cache/wake"),
+                    "--no-cache": (13.0, ("{out}",), "the wake runs recomputed, so its wall times are the data sets'")}),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),
@@ -143,7 +146,8 @@ def _parser():
     for name, study in STUDIES.items():
         # add_help=False: `--help` is passed on to the study's own parser
         sub.add_parser(name, add_help=False, help=f"{study.summary} ({_minutes(study.minutes)})")
-    res = sub.add_parser("results", help="regenerate every committed results folder (about 20 min)",
+    res = sub.add_parser("results", help="regenerate every committed results folder with the options its "
+                                         "manifest records (about 1 h with the wake cache warm)",
                          formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     res.add_argument("--only", nargs="+", choices=[n for n, s in STUDIES.items() if s.in_results],
                      help="regenerate only these (default: all)")
@@ -315,19 +319,50 @@ def main(argv=None):
         _parser().error(f"unrecognised arguments: {' '.join(rest)}")
     if args.command == "check-results":
         return _check(args.results)
-    # results: regenerate every committed folder at its default settings
+    # results: regenerate every committed folder with the options it was computed with
     names = args.only or [n for n, s in STUDIES.items() if s.in_results]
     if args.stale:
         from aircraft.provenance import check_results
         table = check_results("results")
         stale = {row.folder for row in table.itertuples() if row.status != "fresh"}
         names = [n for n in names if any(f.name in stale for f in _plan(STUDIES[n], [])[1])]
-    total = sum(STUDIES[n].minutes for n in names)
-    print(f"[rotorwake] results: {', '.join(names) or 'nothing to do'} ({_minutes(total)} on 2 cores)",
+    options = {n: committed_options(n) for n in names}
+    total = sum(_plan(STUDIES[n], options[n])[0] for n in names)
+    print("[rotorwake] results: " + (", ".join(f"{n} {' '.join(options[n])}".strip() for n in names)
+                                     or "nothing to do") + f" ({_minutes(total)} on 2 cores)",
           file=sys.stderr, flush=True)
     for name in names:
-        run_study(name, [])
+        run_study(name, options[name])
     return 0
+
+
+def committed_options(name, results="results"):
+    """The options the committed results of study ``name`` were computed with.
+
+    Read from the ``manifest.json`` of the study's first results folder under
+    ``results`` (``settings.options``), so ``rotorwake results`` reproduces what is
+    committed -- e.g. ``off-rotor-models --coarse`` -- rather than the study's
+    defaults. ``[]`` (the defaults) when there is no readable manifest yet.
+
+    Parameters
+    ----------
+    name : str
+        Command name, a key of :data:`STUDIES`.
+    results : str or pathlib.Path
+        Folder with one sub-folder per study (what ``--out`` the study's outputs
+        are relative to).
+    """
+    from aircraft.provenance import ResultsManifestError, read_manifest
+    study = STUDIES[name]
+    out = results if study.default_out == "results" else str(Path(results) / Path(study.default_out).name)
+    folder = Path(study.outputs[0].format(out=out))
+    try:
+        options = read_manifest(folder)["settings"]["options"]
+    except (ResultsManifestError, KeyError, TypeError):
+        return []
+    if not (isinstance(options, list) and all(isinstance(o, str) for o in options)):
+        return []
+    return list(options)
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@ inflow and over mu with momentum theory. The dissertation's hover models (§4.6.
 Eq. 4.10) are written beside ours as reference columns.
 
 Writes under ``results/off_rotor_models/``: gains_delays.csv, verification.csv,
-exposure.csv, exposure_vs_mu.csv, dissertation_hover.csv, verification_<surface>_mu<mu>.png,
+exposure.csv, exposure_vs_mu.csv, dissertation_hover.csv, wall_times.csv, verification_<surface>_mu<mu>.png,
 bode_<surface>_mu<mu>.png, exposure.png.
 
 Run: ``python -m studies.off_rotor_models`` (default wake resolution), ``--coarse``
@@ -122,6 +122,9 @@ def run_study(wake=None, *, mus=(0.0, 0.1), ct=CT, settings=None, out_dir="resul
     curves = pd.concat([exposure_curve(cfg, s, ct, np.round(np.linspace(0.0, 0.4, 41), 3)) for s in surfaces],
                        ignore_index=True)
     gains.to_csv(out / "gains_delays.csv", index=False)
+    # per condition: wake trim and records (or cache reads), fits, verification
+    pd.DataFrame({"mu": list(mus), "wall_s": walls, "wake_cache": cache_dir is not None}).to_csv(
+        out / "wall_times.csv", index=False)
     ver.to_csv(out / "verification.csv", index=False)
     exposure.to_csv(out / "exposure.csv", index=False)
     curves.to_csv(out / "exposure_vs_mu.csv", index=False)
@@ -155,6 +158,8 @@ def main(argv=None):
     parser.add_argument("--mu", type=float, nargs="+", default=None, help="advance ratios (default 0 0.1)")
     parser.add_argument("--out", default="results/off_rotor_models")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--no-cache", action="store_true",
+                        help="do not read or write the wake cache (the printed wall times are then the data sets')")
     args = parser.parse_args(argv)
     if args.small:
         wake = WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=4)
@@ -166,7 +171,8 @@ def main(argv=None):
                 if args.coarse else WakeSettings())
         settings = OffRotorSettings(wake=wake)
         mus = args.mu or (0.0, 0.1)
-    run_study(settings=settings, mus=tuple(mus), out_dir=args.out, n_jobs=args.jobs, progress=not args.small)
+    run_study(settings=settings, mus=tuple(mus), out_dir=args.out, n_jobs=args.jobs, progress=not args.small,
+              cache_dir=None if args.no_cache else "default")
 
 
 if __name__ == "__main__":

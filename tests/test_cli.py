@@ -106,3 +106,23 @@ def test_study_help_shows_each_option_with_its_default():
     assert "usage: rotorwake identification-demo" in text
     assert "default: 0" in text and "default: results/identification_demo" in text
     assert "RESTORED True" in text     # the help-only patch is undone
+
+
+def test_results_reruns_each_study_with_the_options_of_its_committed_manifest(tmp_path):
+    # `rotorwake results` must reproduce what is committed (e.g. a --coarse run), not
+    # the study's defaults; without a manifest it falls back to the defaults
+    folder = tmp_path / "off_rotor_models"
+    folder.mkdir()
+    (folder / "gains_delays.csv").write_text("a\n1\n")
+    code = ("from pathlib import Path\n"
+            "from aircraft.provenance import write_manifest\n"
+            "from studies import cli\n"
+            f"root = Path({str(tmp_path)!r})\n"
+            "write_manifest(root / 'off_rotor_models', command='rotorwake off-rotor-models --coarse',\n"
+            "               settings={'command': 'off-rotor-models', 'options': ['--coarse']}, wall_time_s=1.0)\n"
+            "print('OFF', cli.committed_options('off-rotor-models', results=root))\n"
+            "print('FWD', cli.committed_options('forward-flight-identification', results=root))\n"
+            "print('MAIN', cli.committed_options('main', results=root))\n")
+    out = _python(code)
+    assert "OFF ['--coarse']" in out
+    assert "FWD []" in out and "MAIN []" in out

@@ -233,7 +233,8 @@ def test_study_runs_end_to_end_on_a_tiny_wake(tmp_path):
                           timeout=900)
     assert done.returncode == 0, done.stderr[-3000:]
     for name in ("coefficients.csv", "cost_table.csv", "parameters_mu0.1.csv", "verification_mu0.1.csv",
-                 "bode_mu0.1.png", "kr_omega.csv", "kr_constants.csv", "kr.png", "wall_times.csv"):
+                 "bode_mu0.1.png", "kr_omega.csv", "kr_constants.csv", "kr.png", "wall_times.csv",
+                 "kr_low_band.csv"):
         assert (out / name).is_file(), name
     coef = pd.read_csv(out / "coefficients.csv")
     assert {"ours", "cramer_rao_pct", "pitt_peters", "dissertation"} <= set(coef.columns)
@@ -245,4 +246,10 @@ def test_study_runs_end_to_end_on_a_tiny_wake(tmp_path):
     assert "J_ave" in set(costs.output) and np.isfinite(costs.J).all()
     kr = pd.read_csv(out / "kr_omega.csv")
     assert set(kr.axis) == {"1s", "1c"} and np.isfinite(kr.kr_magnitude).all()
+    # the table that says which frequencies the low-frequency value averages reproduces
+    # that value (both axes' points together: the library's mean)
+    low = pd.read_csv(out / "kr_low_band.csv")
+    consts = pd.read_csv(out / "kr_constants.csv")
+    assert set(low.axis) == {"1s", "1c"}
+    assert low.re_kr_low_frequency_points.mean() == pytest.approx(consts.kr_low_frequency.iloc[0], rel=1e-9)
     assert "K_R" in done.stdout and "wall times" in done.stdout
