@@ -17,8 +17,15 @@ synthetic truth (the published model simulated with scipy; ``--synthetic-only``
 runs just that, in a minute, and writes ``synthetic.txt``). Outputs go to ``--out``
 (default ``benchmarks/results/multisine``): ``summary.txt``, ``parameters.csv``,
 ``bode.png``, ``parameters_same_structure.csv`` (the multisine data refitted on the
-six-sweep reduction's parameter set) and ``cross_costs.csv`` (each model's J_ave on
-each experiment's data: how flat the valley between the two estimates is).
+six-sweep reduction's parameter set), ``cross_costs.csv`` (each model's J_ave on
+each experiment's data: how flat the valley between the two estimates is),
+``data_difference.csv`` (the two measured lambda/C against each other, per pair and
+band, where both are coherent) and ``weighting.csv``: the six-sweep structure refitted, from the six-sweep optimum, on
+each data set with each data set's coherence weighting and with unit weights. It
+separates what the data differ in from what the CIFER weighting (coherence) does
+to a structure that does not fit them (J_ave ~ 200). ``--second-amplitude A``
+adds a multisine of peak A [rad]: if the differences were noise they would shrink
+with a larger input.
 """
 import argparse
 import io
@@ -91,7 +98,60 @@ def _same_structure(model_a, model_b, settings):
                n_omega=settings.n_omega, coherence_min=settings.coherence_min)
 
 
-def run(duration, out, n_jobs, amplitude, wake_name="coarse"):
+def _data_difference(model_a, model_b, settings, bands=((1.0, 5.0), (5.0, 12.0), (12.0, 25.0))):
+    """How far apart the two measured lambda/C are, per fitted pair and band: the median
+    |magnitude difference| [dB] and |phase difference| [deg] over the points where both
+    are coherent (>= coherence_min). Lbar is set by the low band, M by the upper ones."""
+    ra, rb = model_a.responses, model_b.responses
+    rows = []
+    for o, i in zip(model_a.cost_table.output, model_a.cost_table.input):
+        ha, ca = ra.element(o, i)
+        hb, cb = rb.element(o, i)
+        for lo, hi in bands:
+            sel = (ra.omega >= lo) & (ra.omega <= hi) & (ca >= settings.coherence_min) & (cb >= settings.coherence_min)
+            if not sel.any():
+                rows.append({"output": o, "input": i, "band": f"{lo:g}-{hi:g}", "points": 0,
+                             "median_abs_dmag_db": np.nan, "median_abs_dphase_deg": np.nan})
+                continue
+            dmag = 20 * np.log10(np.abs(hb[sel]) / np.abs(ha[sel]))
+            dph = np.degrees(np.angle(hb[sel] / ha[sel]))
+            rows.append({"output": o, "input": i, "band": f"{lo:g}-{hi:g}", "points": int(sel.sum()),
+                         "median_abs_dmag_db": float(np.median(np.abs(dmag))),
+                         "median_abs_dphase_deg": float(np.median(np.abs(dph)))})
+    return pd.DataFrame(rows)
+
+
+def _weighting(model_a, model_b, settings):
+    """The six-sweep reduced structure refitted (from its own optimum) on each data set
+    with each weighting; the largest parameter difference from the six-sweep model."""
+    from flightid import MeasuredResponse, fit
+    sa = model_a.fit.structure
+    pairs = list(zip(model_a.cost_table.output, model_a.cost_table.input))
+    ra, rb = model_a.responses, model_b.responses
+    if not np.array_equal(ra.omega, rb.omega):
+        return pd.DataFrame()
+
+    def weighted(r, coh):
+        return MeasuredResponse(r.frdata, r.omega, coh, r.input_labels, r.output_labels)
+    cases = [("six sweeps", "six sweeps'", ra), ("multisine", "multisine's", rb),
+             ("multisine", "six sweeps'", weighted(rb, ra.coherence)),
+             ("six sweeps", "multisine's", weighted(ra, rb.coherence)),
+             ("six sweeps", "unit", weighted(ra, np.ones_like(ra.coherence))),
+             ("multisine", "unit", weighted(rb, np.ones_like(rb.coherence)))]
+    rows = []
+    for data, weights, resp in cases:
+        f = fit(sa, resp, pairs=pairs, frequency_ranges=tuple(settings.fit_range), n_omega=settings.n_omega,
+                coherence_min=settings.coherence_min)
+        v = f.structure.values
+        diffs = {n: 100 * (v[n] - sa.values[n]) / abs(sa.values[n]) for n in sa.free_names if not n.startswith("t")}
+        worst = max(diffs, key=lambda n: abs(diffs[n]))
+        rows.append({"data": data, "coherence_weights": weights, "J_ave": f.J_ave,
+                     "max_abs_diff_pct_M_Lbar": abs(diffs[worst]), "worst_parameter": worst,
+                     **{f"diff_{n}_pct": d for n, d in diffs.items()}})
+    return pd.DataFrame(rows)
+
+
+def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=None):
     from aircraft.configs import coaxial_compound
     from aircraft.identification import Coaxial6State, IdentificationSettings, identify_inflow
     from aircraft.identification.multisine import MultisineSettings, identify_inflow_multisine
@@ -160,7 +220,39 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse"):
         for d, resp in (("six sweeps", model_a.responses), ("multisine", model_b.responses))])
     print("cross costs (each model on each experiment's lambda/C, the six-sweep pairs and bands):")
     print(cross.to_string(index=False, float_format=lambda v: f"{v:.1f}"))
+    diff = _data_difference(model_a, model_b, settings) if np.array_equal(
+        model_a.responses.omega, model_b.responses.omega) else pd.DataFrame()
+    if len(diff):
+        print("\nthe measured lambda/C of the two experiments, where both are coherent (median |difference|):")
+        piv = diff.pivot_table(index=["output", "input"], columns="band",
+                               values=["median_abs_dmag_db", "median_abs_dphase_deg"])
+        print(piv.to_string(float_format=lambda v: f"{v:.2f}"))
+        by_band = diff.groupby("band")[["median_abs_dmag_db", "median_abs_dphase_deg"]].median()
+        print("median over the pairs: " + "; ".join(f"{b} rad/s {r.median_abs_dmag_db:.2f} dB / "
+                                                     f"{r.median_abs_dphase_deg:.1f} deg"
+                                                     for b, r in by_band.iterrows()))
+    weights = _weighting(model_a, model_b, settings)
+    if len(weights):
+        print("\nweighting (the six-sweep structure refitted from its optimum; M and Lbar differences from it):")
+        print(weights[["data", "coherence_weights", "J_ave", "max_abs_diff_pct_M_Lbar", "worst_parameter"]]
+              .to_string(index=False, float_format=lambda v: f"{v:.1f}"))
+    if second_amplitude:
+        ms2 = MultisineSettings(duration=duration, amplitude=second_amplitude)
+        model_c = identify_inflow_multisine(config, None, structure, ct=CT_SYSTEM, settings=settings, multisine=ms2,
+                                            n_jobs=n_jobs, progress=False)
+        cmp2 = _compare(model_a.parameters, model_c.parameters, settings.cramer_rao_max)
+        well2 = cmp2[cmp2.well_identified]
+        cmp3 = _compare(model_b.parameters, model_c.parameters, settings.cramer_rao_max)
+        well3 = cmp3[cmp3.well_identified]
+        print(f"\nsecond multisine, peak {second_amplitude:g} rad: J_ave {model_c.J_ave:.1f}; against the six sweeps "
+              f"{len(well2)} well identified, largest difference {well2.diff_pct.abs().max():.1f} %; against the "
+              f"{amplitude:g} rad multisine {len(well3)} well identified, largest difference "
+              f"{well3.diff_pct.abs().max():.1f} %")
+        out.mkdir(parents=True, exist_ok=True)
+        cmp2.to_csv(out / "parameters_second_amplitude.csv", index=False)
     out.mkdir(parents=True, exist_ok=True)
+    weights.to_csv(out / "weighting.csv", index=False)
+    diff.to_csv(out / "data_difference.csv", index=False)
     cmp_same.to_csv(out / "parameters_same_structure.csv", index=False)
     cross.to_csv(out / "cross_costs.csv", index=False)
     print("\ncost table (six sweeps | multisine):")
@@ -245,6 +337,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--duration", type=float, default=90.0, help="multisine record [s]")
     parser.add_argument("--amplitude", type=float, default=0.02, help="multisine peak per control [rad]")
+    parser.add_argument("--second-amplitude", type=float, default=None,
+                        help="also identify from a multisine of this peak [rad] (e.g. 0.04)")
     parser.add_argument("--jobs", type=int, default=2, help="wake worker processes")
     parser.add_argument("--wake", choices=("coarse", "default"), default="coarse",
                         help="wake resolution (coarse: 15 deg steps, 2 revs, 6 elements; default: WakeSettings())")
@@ -262,7 +356,7 @@ def main(argv=None):
     with redirect_stdout(_Tee()):
         synthetic()
         if not args.synthetic_only:
-            run(args.duration, args.out, args.jobs, args.amplitude, args.wake)
+            run(args.duration, args.out, args.jobs, args.amplitude, args.wake, args.second_amplitude)
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / ("synthetic.txt" if args.synthetic_only else "summary.txt")).write_text(buf.getvalue())
 

@@ -26,6 +26,8 @@ STUDIES = [
      "coaxial_wake_identification", ["same_responses.csv", "parameters_6state.csv", "parameters_12state.csv",
                                      "verification_6state.csv", "verification_12state.csv"],
      "rotorwake coaxial-wake-identification"),
+    ("Coaxial rotor: quasi-steady check of the shipped models (held steps of the wake)", "coaxial_quasi_steady",
+     "coaxial_quasi_steady", ["table.csv", "settling.csv"], "rotorwake coaxial-quasi-steady"),
     ("Coaxial rotor: design space of rotor spacing and thrust (recommendation 2)", "coaxial_design_space",
      "coaxial_design_space", ["summary.csv"], "rotorwake coaxial-design-space"),
     ("Single rotor in forward flight and wake distortion K_R (§4.4, §4.7)", "forward_flight_identification",

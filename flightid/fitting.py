@@ -536,8 +536,11 @@ def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, requ
     for k, n in enumerate(free):
         row = table.parameter == n
         scale = abs(values[n]) if values[n] != 0 else np.nan
-        table.loc[row, "cramer_rao_pct"] = 100.0 * cr[k] / scale
-        table.loc[row, "insensitivity_pct"] = 100.0 * ins[k] / scale
+        # a parameter on a flat direction, or one that went to ~0, has a relative bound
+        # beyond the float range: that is inf (said as such), not a warning
+        with np.errstate(over="ignore", divide="ignore"):
+            table.loc[row, "cramer_rao_pct"] = 100.0 * np.float64(cr[k]) / scale
+            table.loc[row, "insensitivity_pct"] = 100.0 * np.float64(ins[k]) / scale
     success, message = bool(sol.success), str(sol.message)
     if report.no_influence:
         success = False

@@ -162,8 +162,10 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
         print(f"6-state J_ave = {model.J_ave:.1f} (dissertation, Table 5.1: 171.3)")
         print(params.to_string(index=False, float_format=fmt))
         print(model.verification_table.to_string(index=False, float_format=fmt))
-        print(f"6-state trusted (all CR < 20 %, insensitivity < 10 %): {model.trusted}; "
-              f"flat directions: {len(model.fit.flat_directions)}")
+        print(f"6-state trusted (CR < 20 %, insensitivity < 10 %, J_ave <= 100, no flat direction): "
+              f"{model.trusted}; flat directions: {len(model.fit.flat_directions)}")
+        for reason in model.trust_failures():
+            print(f"  not trusted: {reason[:300]}")
         if model12 is not None:
             print(model12.staged.log.to_string(index=False, float_format=fmt) if model12.staged is not None else "")
             print(cost12.to_string(index=False, float_format=fmt))
@@ -174,6 +176,8 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
                   f"(ratio {avg.ratio_12_to_6:.2f}; dissertation 171.3 -> 77.0, 0.45)")
             print(f"12-state J_ave over all its responses {model12.J_ave:.1f}; trusted: {model12.trusted}; "
                   f"flat directions: {len(model12.fit.flat_directions)}")
+            for reason in model12.trust_failures():
+                print(f"  not trusted: {reason[:300]}")
         print(f"tables and figures in {out}/  (wall {time.perf_counter() - t0:.0f} s)")
     return model, model12
 

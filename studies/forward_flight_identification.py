@@ -72,26 +72,6 @@ def cost_table(models):
     return pd.DataFrame(rows)
 
 
-def kr_low_band(kr_res):
-    """Where K_R's low-frequency value comes from, per axis: the frequencies [rad/s] and
-    coherence of the points ``kr_low_frequency`` averages, beside |K_R| and the coherence
-    at the lowest frequency of the band (which may be below the coherence threshold)."""
-    rows = []
-    t = kr_res.table
-    for axis in sorted(set(t.axis)):
-        a = t[t.axis == axis].sort_values("omega")
-        used = a[a.coherence >= kr_res.coherence_min].head(kr_res.low_frequency_points)
-        bottom = a[a.omega >= kr_res.band[0]].iloc[0]
-        rows.append({"axis": axis, "low_frequency_points_omega_min": used.omega.min(),
-                     "low_frequency_points_omega_max": used.omega.max(),
-                     "low_frequency_points_coherence_mean": used.coherence.mean(),
-                     # NaN (said, not averaged) when the axis has no coherent point
-                     "re_kr_low_frequency_points": float(np.mean(np.real(used.kr))) if len(used) else np.nan,
-                     "omega_band_bottom": bottom.omega, "kr_magnitude_band_bottom": abs(bottom.kr),
-                     "coherence_band_bottom": bottom.coherence})
-    return pd.DataFrame(rows)
-
-
 def run_study(wake="default", *, mus=(0.1, 0.2), alpha=0.0, ct=0.0061, small=False, kr=True,
               out_dir="results/forward_flight_identification", n_jobs=2, cache_dir="default", progress=True):
     """Run the study; return ``(coefficients, costs, kr_result or None)``."""
@@ -124,7 +104,8 @@ def run_study(wake="default", *, mus=(0.1, 0.2), alpha=0.0, ct=0.0061, small=Fal
                       "wall_s": time.perf_counter() - t0})
         kr_res.to_pandas().to_csv(out / "kr_omega.csv", index=False)
         kr_res.constants().to_csv(out / "kr_constants.csv", index=False)
-        kr_low_band(kr_res).to_csv(out / "kr_low_band.csv", index=False)
+        kr_low_band = kr_res.low_frequency_table()
+        kr_low_band.to_csv(out / "kr_low_band.csv", index=False)
         kr_res.plot().savefig(out / "kr.png", dpi=80)
     walls = pd.DataFrame(walls)
     walls.to_csv(out / "wall_times.csv", index=False)
@@ -145,7 +126,7 @@ def run_study(wake="default", *, mus=(0.1, 0.2), alpha=0.0, ct=0.0061, small=Fal
         print("\n" + kr_res.summary())
         print("K_R at the bottom of the band (the 'low-frequency' constant above is the mean over the lowest"
               f" points with coherence >= {kr_res.coherence_min:g}):")
-        print(kr_low_band(kr_res).to_string(index=False, float_format=fmt))
+        print(kr_low_band.to_string(index=False, float_format=fmt))
     print("\nwall times on this machine:")
     print(walls.to_string(index=False, float_format=lambda v: f"{v:.0f}"))
     print(f"tables and figures in {out}/")

@@ -112,6 +112,7 @@ def test_wake_settings_and_flight_condition_reject(make, match):
     (dict(seed=1.5), "SweepSpec.seed must be an integer or None"),
     (dict(noise_fraction=-0.1), "SweepSpec.noise_fraction must be non-negative"),
     (dict(kind="chirp"), "SweepSpec.kind must be"),
+    (dict(kind="step", duration=1.0, trim_start=0.95, pulse_width=0.1), "must end before duration"),
 ])
 def test_sweep_spec_rejects(kwargs, match):
     with pytest.raises(SweepSpecError, match=match):

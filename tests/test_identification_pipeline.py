@@ -109,3 +109,95 @@ def test_pipeline_refuses_what_it_cannot_identify():
         IdentificationSettings(fit_range=(0.1, 25.0))
     with pytest.raises(ValueError, match="unknown inflow structure"):
         identify_inflow(uh60_single_rotor(), None, "five_state", ct=CT)
+
+
+def test_trust_says_why_and_counts_the_cost(model):
+    # the tiny wake's model: every reason is a sentence, and `trusted` is their absence
+    reasons = model.trust_failures()
+    assert model.trusted == (reasons == [])
+    free = model.parameters[model.parameters.status == "free"]
+    crs_ok = (free.cramer_rao_pct < model.settings.cramer_rao_max).all()
+    assert crs_ok == (not any("Cramer-Rao" in r for r in reasons))
+    # the same parameters at a cost above the CIFER guideline are not trusted
+    # (forward flight mu = 0.2 had every CR < 20 % at J_ave 490)
+    import copy
+    from aircraft.identification.pipeline import TRUST_J_AVE_MAX
+    poor = copy.copy(model)
+    poor.fit = copy.copy(model.fit)
+    poor.fit.J_ave = 4.9 * TRUST_J_AVE_MAX
+    assert not poor.trusted
+    assert any(r.startswith("J_ave 490 > 100") for r in poor.trust_failures())
+    assert "not trusted: J_ave 490" in poor.summary()
+
+
+def test_start_candidates_add_the_lowest_coherent_points(model):
+    from aircraft.identification.pipeline import _start_candidates
+    from aircraft.identification.structures import low_frequency_points
+    from flightid import MeasuredResponse
+    r = model.responses
+    s = model.settings
+    # coherent everywhere: the lowest points are the coherent ones, one start
+    coh = np.ones_like(r.coherence)
+    clean = MeasuredResponse(r.frdata, r.omega, coh, r.input_labels, r.output_labels)
+    assert low_frequency_points(clean, 3, 0.6).tolist() == [0, 1, 2]
+    assert len(_start_candidates(SingleRotor3State(), clean, s)) == 1
+    # the two lowest points incoherent in one element (a multisine's lowest harmonics):
+    # the coherent start skips them, and both starts are fitted
+    coh[1, 2, :2] = 0.3
+    noisy = MeasuredResponse(r.frdata, r.omega, coh, r.input_labels, r.output_labels)
+    assert low_frequency_points(noisy, 3, 0.6).tolist() == [2, 3, 4]
+    assert low_frequency_points(noisy, 3, None).tolist() == [0, 1, 2]
+    starts = _start_candidates(SingleRotor3State(), noisy, s)
+    assert [label for label, _ in starts] == ["lowest points", "lowest points with coherence >= 0.6"]
+    inv = np.linalg.inv(np.real(r.frdata[:, :, 2:5].mean(axis=2)))
+    assert starts[1][1]["l11"] == pytest.approx(inv[0, 0], rel=1e-12)
+    # nothing coherent: the best points of the lower half, still a start
+    bad = MeasuredResponse(r.frdata, r.omega, np.full_like(coh, 0.2), r.input_labels, r.output_labels)
+    assert len(low_frequency_points(bad, 3, 0.6)) == 3
+    with pytest.raises(ValueError, match="n_points must be an integer >= 1"):
+        low_frequency_points(clean, 0, 0.6)
+    with pytest.raises(ValueError, match=r"coherence_min must lie in \[0, 1\)"):
+        low_frequency_points(clean, 3, 1.5)
+    # the pipeline logged each start it tried and kept exactly one: the lowest cost
+    log = model.provenance["starts"]
+    assert sum(row["kept"] for row in log) == 1
+    if len(log) > 1:
+        kept = next(row for row in log if row["kept"])
+        assert kept["J_ave_full_fit"] == min(row["J_ave_full_fit"] for row in log)
+
+
+def test_quasi_steady_check_against_momentum_theory_and_the_dc_gain(model, tmp_path):
+    from aircraft.identification import quasi_steady_check
+    cfg = uh60_single_rotor()
+    # 5 s held steps on the tiny wake (two records, about 20 s of one core)
+    kw = dict(ct=CT, controls=["theta0", "theta1s"], hold_s=5.0, window=(2.5, 5.0), n_jobs=1,
+              cache_dir=tmp_path, progress=False)
+    check = quasi_steady_check(model, cfg, **kw)
+    t = check.to_pandas().set_index(["control", "output"])
+    d_ct = check.load_changes.loc["theta0", "CT"]
+    assert d_ct > 0
+    # the wake's own steady collective response against momentum theory, lam = sqrt(CT/2):
+    # d lam0 / d CT = 1 / (4 lam_h); the same 0.7-1.5 band as the identified model's (above)
+    lam_h = math.sqrt(model.trim.outputs["CT"] / 2)
+    assert 0.7 < t.loc[("theta0", "lam0"), "wake"] / d_ct * 4 * lam_h < 1.5
+    # the model column is the closed-form DC gain of the diagonal 3-state model,
+    # lam = Lbar^-1 C (the Pade delays have unit DC gain), times the record's load changes
+    v = model.values
+    for control in ("theta0", "theta1s"):
+        dc = check.load_changes.loc[control]
+        assert t.loc[(control, "lam0"), "model"] == pytest.approx(dc.CT / v["l11"], rel=1e-6)
+        assert t.loc[(control, "lam1s"), "model"] == pytest.approx(dc.CL / v["l22"], rel=1e-6)
+    assert t.loc[("theta0", "lam0"), "on_axis"] and not t.loc[("theta0", "lam1s"), "on_axis"]
+    # a model with three times the steady gain fails the guard, whatever its fit cost
+    wrong = model.structure.to_inflow({**v, "l11": v["l11"] / 3, "l22": v["l22"] / 3}, model.omega,
+                                      loads_ref=model._refs()[0], inflow_ref=model._refs()[1], name="3x gain")
+    bad = quasi_steady_check(wrong, cfg, settings=model.settings, **kw)
+    assert not bad.passes()
+    # same (cached) wake records, so exactly three times the prediction
+    assert np.allclose(bad.table.model, 3 * check.table.model, rtol=1e-6)
+    assert np.allclose(bad.table.wake, check.table.wake, rtol=0, atol=0)
+    assert "FAILS" in bad.summary() and isinstance(bad.plot(), Figure)
+    with pytest.raises(ValueError, match="window"):
+        quasi_steady_check(model, cfg, **{**kw, "window": (0.2, 5.0)})
+    with pytest.raises(ValueError, match="IdentifiedModel or an IdentifiedInflow"):
+        quasi_steady_check("model", cfg, **kw)

@@ -36,6 +36,7 @@ def test_design_space_study_writes_table_figure_and_schedule(tmp_path):
     assert ((ok.CT_U + ok.CT_L - 0.0096).abs() < 2e-4).all()
     timing = pd.read_csv(tmp_path / "timing.csv")
     assert len(timing) == 2 and timing.wall_s.iloc[-1] > 0      # the point and the total
+    assert timing.wake_cache.str.startswith("on").all()          # the test runs with the cache
     assert "wall" in done.stdout
     if (tmp_path / "schedule.json").exists():     # written when the point identified a stable model
         doc = json.loads((tmp_path / "schedule.json").read_text())

@@ -77,3 +77,14 @@ def test_multisine_record_on_a_tiny_wake(tmp_path):
     again = run_sweeps(cfg, s, FlightCondition(), [spec], trim={"ct": 0.0061}, n_jobs=1, cache_dir=tmp_path,
                        progress=False)          # served from the cache, same record
     np.testing.assert_array_equal(again[spec.name].to_numpy(), df.to_numpy())
+
+
+def test_step_input_is_a_ramp_then_held():
+    from aircraft.wake import SweepSpec
+    from aircraft.wake.sweeps import sweep_inputs
+    t, u = sweep_inputs(SweepSpec("theta1s", kind="step", amplitude=0.02, duration=2.0, trim_start=0.5,
+                                  pulse_width=0.1), 0.01)
+    assert u[t < 0.5].max() == 0.0
+    assert u[t >= 0.6].min() == pytest.approx(0.02) and u.max() == pytest.approx(0.02)
+    # halfway up the ramp, half the step
+    assert u[np.argmin(abs(t - 0.55))] == pytest.approx(0.01, abs=1e-12)

@@ -23,18 +23,20 @@
     wake_distortion.py  K_R(omega) in hover from tip-path-plane sweeps (§4.7, Fig. 4.39)
     design_space.py  identify_design_space: the coaxial 6-state model over rotor spacing x
                    thrust, DesignSpaceResult (table, plot, .schedule() -> ScheduledInflow)
+    quasi_steady.py  quasi_steady_check: a model's DC gain against held steps of the wake
+                   (what a fit on 1-25 rad/s cannot see), QuasiSteadyCheck
 
 The wake (numba) is imported only when a pipeline runs.
 """
 from .frames import COAXIAL_DIRECTIONS, FrameError, convert_frames, frame_signs
 from .structures import (STRUCTURES, Coaxial6State, Coaxial12State, InflowStructure, SingleRotor3State,
-                         get_structure)
+                         get_structure, low_frequency_gain, low_frequency_points)
 from .coaxial_forward import CoaxialForward12State
 from .coaxial_200kt import (IsolatedRotorCheck, forward_flight_condition, forward_trim_request,
                             identify_coaxial_forward, isolated_rotor_check)
 from .store import SCHEMA, ModelFileError, ModelRecord, load_record, shipped_models
-from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
-                       identification_hash, identify_inflow)
+from .pipeline import (PIPELINE_VERSION, TRUST_J_AVE_MAX, IdentificationSettings, IdentifiedModel,
+                       PipelineError, identification_hash, identify_inflow)
 from .multisine import MultisineSettings, identify_inflow_multisine, record_revolutions
 from .off_rotor import (INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRotorSettings, OffRotorSurface,
                         fit_off_rotor, gain_delay_structure, horizontal_tail, wake_exposure, wing_under_hub)
@@ -45,6 +47,7 @@ from .wake_distortion import (KR_CONTROLS, WakeDistortionResult, identify_wake_d
                               wake_distortion_from_runs)
 from .design_space import (KEY_PARAMETERS, DesignPoint, DesignSpaceError, DesignSpaceResult,
                            identify_design_space, spaced_config)
+from .quasi_steady import QuasiSteadyCheck, quasi_steady_check
 
 STRUCTURES[SingleRotorForward.key] = SingleRotorForward
 
@@ -65,4 +68,5 @@ __all__ = ["CoaxialForward12State", "IsolatedRotorCheck", "forward_flight_condit
            "KR_CONTROLS", "WakeDistortionResult", "identify_wake_distortion", "kr_frequency_response",
            "wake_distortion_from_runs",
            "KEY_PARAMETERS", "DesignPoint", "DesignSpaceError",
-           "DesignSpaceResult", "identify_design_space", "spaced_config"]
+           "DesignSpaceResult", "identify_design_space", "spaced_config",
+           "QuasiSteadyCheck", "quasi_steady_check", "TRUST_J_AVE_MAX", "low_frequency_gain", "low_frequency_points"]

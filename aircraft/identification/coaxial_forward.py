@@ -42,7 +42,7 @@ import numpy as np
 
 from aircraft.inflow.published import fgc_state_names
 
-from .structures import InflowStructure
+from .structures import InflowStructure, _low_frequency_inverse, low_frequency_gain
 
 __all__ = ["CoaxialForward12State", "F_PATTERN", "G_PATTERN"]
 
@@ -179,7 +179,7 @@ class CoaxialForward12State(InflowStructure):
             c[k, 2 * k] = c[k, 2 * k + 1] = 1.0
         return c
 
-    def initial_values(self, lam_over_c, n_points=3):
+    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
         """A quasi-steady start from the measured lambda/C (azimuth time).
 
         The real part of the measured lambda/C averaged over its ``n_points``
@@ -203,14 +203,10 @@ class CoaxialForward12State(InflowStructure):
             Parameter name -> value.
         """
         from .structures import _PP_M11, _PP_M22
-        loads = [lam_over_c.input_labels.index(c) for c in self.loads]
-        outs = [lam_over_c.output_labels.index(c) for c in self.outputs]
-        g0 = np.real(lam_over_c.frdata[np.ix_(outs, loads)][:, :, :n_points].mean(axis=2))
-        try:
-            l0 = np.linalg.inv(g0)
-        except np.linalg.LinAlgError as err:
-            raise np.linalg.LinAlgError("measured low-frequency lambda/C is singular: "
-                                        "no data-driven start") from err
+        g0 = low_frequency_gain(lam_over_c, n_points, coherence_min, outputs=list(self.outputs),
+                                inputs=list(self.loads))
+        l0 = _low_frequency_inverse(lam_over_c, n_points, outputs=list(self.outputs), inputs=list(self.loads),
+                                    coherence_min=coherence_min)
         m = np.array([_PP_M11, _PP_M22, _PP_M22] * 2)
         a = np.abs(np.diag(l0) / m)
         vals = {n: 0.0 for n in self.parameter_names()}

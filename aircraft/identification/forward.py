@@ -124,7 +124,7 @@ class SingleRotorForward(InflowStructure):
         return MLTauStructure(m, lb, tau, inputs=self.inputs, outputs=self.outputs, initial=init,
                               fixed=[f for f in fixed if f in names], omega=omega)
 
-    def initial_values(self, lam_over_c, n_points=3):
+    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
         """Data-driven start: ``Lbar`` from the inverted low-frequency lambda/C (its
         Eq. 4.3 entries, or all of it), Pitt-Peters ``M`` (off-diagonal 0), delays
         20 ms on the diagonal and 50 ms off it.
@@ -140,7 +140,7 @@ class SingleRotorForward(InflowStructure):
         -------
         dict
         """
-        l0 = _low_frequency_inverse(lam_over_c, n_points)
+        l0 = _low_frequency_inverse(lam_over_c, n_points, coherence_min=coherence_min)
         vals = {}
         for name in self.parameter_names():
             p, i, j = name[0], int(name[1]) - 1, int(name[2]) - 1

@@ -185,11 +185,12 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
         raise PipelineError(f"the multisine record cannot separate the inputs: {err}") from err
     stages.update()
     omega = float(config.rotors[0].omega)
-    staged, reduction, result, check, floor = _fit_and_verify(
+    staged, reduction, result, check, floor, start_log = _fit_and_verify(
         structure, responses, runs, doublet_spec, zero_spec, wake_trim, omega, s, progress, stages)
     dt = s.wake_settings.azimuth_step / omega
     excitation = ms_spec.multisine(dt)
     provenance = {"source": "aircraft.identification.identify_inflow_multisine", "schema": SCHEMA,
+                  "starts": start_log,
                   "pipeline": PIPELINE_VERSION, "code_version": _code_version(),
                   "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
                   "wall_s": round(time.perf_counter() - t_start, 1),

@@ -32,19 +32,97 @@ from aircraft.inflow.base import flap_rate_names, inflow_names, load_names
 from aircraft.inflow.published import fgc_state_names
 
 __all__ = ["InflowStructure", "SingleRotor3State", "Coaxial6State", "Coaxial12State",
-           "STRUCTURES", "get_structure"]
+           "STRUCTURES", "get_structure", "low_frequency_gain", "low_frequency_points"]
 
 _PP_M11 = 8.0 / (3.0 * math.pi)          # Pitt-Peters hover apparent mass (azimuth time)
 _PP_M22 = -16.0 / (45.0 * math.pi)
 
 
-def _low_frequency_inverse(lam_over_c, n_points):
-    """Inverse of the real part of the measured lambda/C at its lowest frequencies.
+def low_frequency_points(response, n_points, coherence_min=None, outputs=None, inputs=None):
+    """Indices of the ``n_points`` lowest frequencies, or lowest coherent ones.
 
-    This is the quasi-steady Lbar (``lambda = Lbar^-1 C`` at s -> 0); the mean over
-    the ``n_points`` lowest frequencies averages the sweep's low-frequency noise.
+    With ``coherence_min`` None: the ``n_points`` lowest frequencies. Otherwise a point
+    qualifies when every element of the (``outputs`` x ``inputs``) block has coherence
+    >= ``coherence_min``. A sweep's lowest points usually do; a multisine's lowest
+    harmonics often do not, and a start taken there is noise (the default-wake
+    multisine started from its three lowest points, coherence 0.15-0.5 in the cyclic
+    cross pairs, and ended at J_ave 1553). Where fewer than ``n_points`` points
+    qualify, the ``n_points`` points of highest worst-element coherence in the lower
+    half of the band are used instead, so a start always exists.
+
+    Parameters
+    ----------
+    response : flightid.MeasuredResponse
+        Measured response with coherence (frequencies ascending).
+    n_points : int
+        Number of points wanted (>= 1).
+    coherence_min : float or None
+        Coherence threshold in [0, 1), or None for the lowest points whatever their
+        coherence.
+    outputs, inputs : list of str, optional
+        The block to check; default every element.
+
+    Returns
+    -------
+    numpy.ndarray of int
+        Ascending frequency indices, ``n_points`` of them (fewer only when the
+        response has fewer points).
     """
-    g0 = np.real(lam_over_c.frdata[:, :, :n_points].mean(axis=2))
+    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 1:
+        raise ValueError(f"n_points must be an integer >= 1, got {n_points!r}")
+    n_omega = response.frdata.shape[-1]
+    if coherence_min is None:
+        return np.arange(min(n_points, n_omega))
+    if not 0.0 <= float(coherence_min) < 1.0:
+        raise ValueError(f"coherence_min must lie in [0, 1) or be None, got {coherence_min!r}")
+    coh = response.coherence
+    if outputs is not None or inputs is not None:
+        oi = [response.output_labels.index(o) for o in (outputs or response.output_labels)]
+        ii = [response.input_labels.index(i) for i in (inputs or response.input_labels)]
+        coh = coh[np.ix_(oi, ii)]
+    worst = coh.reshape(-1, coh.shape[-1]).min(axis=0)
+    good = np.flatnonzero(worst >= coherence_min)
+    if good.size >= n_points:
+        return good[:n_points]
+    half = max(n_points, worst.size // 2)
+    return np.sort(np.argsort(-worst[:half], kind="stable")[:n_points])
+
+
+def low_frequency_gain(response, n_points, coherence_min=None, outputs=None, inputs=None):
+    """Real part of the measured response averaged over its lowest coherent points.
+
+    The quasi-steady gain of a block (``lambda = G0 C`` as s -> 0), from the points of
+    :func:`low_frequency_points`; the mean over several of them averages the record's
+    low-frequency noise.
+
+    Parameters
+    ----------
+    response : flightid.MeasuredResponse
+        Measured response with coherence.
+    n_points : int
+        Points averaged.
+    coherence_min : float or None
+        As for :func:`low_frequency_points` (None: the lowest points).
+    outputs, inputs : list of str, optional
+        The block; default the whole response.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``G0``, shape (n_outputs, n_inputs) of the block, in the response's units.
+    """
+    idx = low_frequency_points(response, n_points, coherence_min, outputs, inputs)
+    data = response.frdata
+    if outputs is not None or inputs is not None:
+        oi = [response.output_labels.index(o) for o in (outputs or response.output_labels)]
+        ii = [response.input_labels.index(i) for i in (inputs or response.input_labels)]
+        data = data[np.ix_(oi, ii)]
+    return np.real(data[:, :, idx].mean(axis=2))
+
+
+def _low_frequency_inverse(lam_over_c, n_points, outputs=None, inputs=None, coherence_min=None):
+    """Inverse of :func:`low_frequency_gain`: the quasi-steady Lbar (``lambda = Lbar^-1 C``)."""
+    g0 = low_frequency_gain(lam_over_c, n_points, coherence_min, outputs=outputs, inputs=inputs)
     try:
         return np.linalg.inv(g0)
     except np.linalg.LinAlgError as err:
@@ -141,7 +219,7 @@ class InflowStructure:
         """The :mod:`flightid` structure with ``initial`` values, ``omega`` [rad/s]."""
         raise NotImplementedError
 
-    def initial_values(self, lam_over_c, n_points=3):
+    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
         """Data-driven start from measured lambda/C (a :class:`flightid.MeasuredResponse`)."""
         raise NotImplementedError
 
@@ -189,10 +267,10 @@ class SingleRotor3State(InflowStructure):
         return MLTauStructure(diag("m"), diag("l"), diag("t"), inputs=self.inputs, outputs=self.outputs,
                               initial=dict(initial), fixed=fixed, omega=omega)
 
-    def initial_values(self, lam_over_c, n_points=3):
+    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
         """``l11``, ``l22`` from the inverted low-frequency lambda/C (the cyclic value
         is the mean of the 1s and 1c diagonals); Pitt-Peters ``M``; 20 ms delays."""
-        l0 = _low_frequency_inverse(lam_over_c, n_points)
+        l0 = _low_frequency_inverse(lam_over_c, n_points, coherence_min=coherence_min)
         return {"m11": _PP_M11, "m22": _PP_M22, "l11": float(l0[0, 0]),
                 "l22": float(0.5 * (l0[1, 1] + l0[2, 2])), "t11": 0.02, "t22": 0.02}
 
@@ -242,13 +320,13 @@ class Coaxial6State(InflowStructure):
                               inputs=self.inputs, outputs=self.outputs, initial=dict(initial),
                               fixed=fixed, omega=omega)
 
-    def initial_values(self, lam_over_c, n_points=3):
+    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
         """``Lbar`` from the inverse of the measured low-frequency lambda/C (real part,
         mean of the ``n_points`` lowest frequencies); ``M`` diagonal from Pitt-Peters
         in hover, cyclic cross terms 0.05 and collective cross terms 0; delays
         20 ms (own rotor) and 50 ms (cross). A start from the printed Eq. 5.3 values
         ended in a degenerate, near-singular ``M`` (J_ave 1300) in our wake."""
-        l0 = _low_frequency_inverse(lam_over_c, n_points)
+        l0 = _low_frequency_inverse(lam_over_c, n_points, coherence_min=coherence_min)
         init = {"m11": _PP_M11, "m44": _PP_M11, "m22": _PP_M22, "m55": _PP_M22, "m14": 0.0, "m41": 0.0,
                 "m25": 0.05, "m52": 0.05, "t11": 0.02, "t22": 0.02, "t44": 0.02, "t55": 0.02,
                 "t14": 0.05, "t41": 0.05, "t25": 0.05, "t52": 0.05}
@@ -444,7 +522,7 @@ class Coaxial12State(InflowStructure):
     _NEAR = (1, 3, 5, 7, 9, 11)
     _LOAD_COLS = (1, 2, 4, 6, 7, 9)
 
-    def initial_values(self, lam_over_c, n_points=3):
+    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
         """Near wake = the quasi-steady 6-state model; far wake switched off.
 
         Near-wake states: ``F_N = -M^-1 Lbar``, ``G_N = M^-1`` with the Pitt-Peters
@@ -455,13 +533,7 @@ class Coaxial12State(InflowStructure):
         azimuth and zero gains (the staged plan frees them later); flap-rate gains
         0.01 so the lambda/beta_dot responses are not identically zero.
         """
-        loads = [lam_over_c.input_labels.index(c) for c in self.loads]
-        g0 = np.real(lam_over_c.frdata[:, loads, :n_points].mean(axis=2))
-        try:
-            l0 = np.linalg.inv(g0)
-        except np.linalg.LinAlgError as err:
-            raise np.linalg.LinAlgError("measured low-frequency lambda/C is singular: "
-                                        "no data-driven start") from err
+        l0 = _low_frequency_inverse(lam_over_c, n_points, inputs=list(self.loads), coherence_min=coherence_min)
         m = np.array([_PP_M11, _PP_M22, _PP_M22] * 2)
         vals = {n: 0.0 for n in self.parameter_names()}
         near = {state: k for k, state in enumerate(self._NEAR)}

@@ -36,6 +36,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from .structures import _low_frequency_inverse
+
 __all__ = ["KR_CONTROLS", "WakeDistortionResult", "kr_frequency_response", "wake_distortion_from_runs",
            "identify_wake_distortion"]
 
@@ -163,17 +165,50 @@ class WakeDistortionResult:
         """Coherence-weighted mean of |K_R(omega)| over the band, both axes [-]."""
         return self._constant(magnitude=True)
 
+    def _low_points(self, axis):
+        """The points of ``axis`` that :attr:`kr_low_frequency` averages: the lowest
+        ``low_frequency_points`` frequencies with coherence >= ``coherence_min``."""
+        t = self.table[(self.table.axis == axis) & (self.table.coherence >= self.coherence_min)]
+        return t.sort_values("omega").head(self.low_frequency_points)
+
     @property
     def kr_low_frequency(self) -> float:
-        """Mean Re K_R over the lowest ``low_frequency_points`` coherent frequencies of each axis [-]."""
+        """Mean Re K_R over the lowest ``low_frequency_points`` coherent frequencies of each axis [-].
+
+        These need not be low frequencies: :meth:`low_frequency_table` says where they lie."""
         vals = []
         for axis, *_ in _AXES:
-            t = self.table[(self.table.axis == axis) & (self.table.coherence >= self.coherence_min)]
-            t = t.sort_values("omega").head(self.low_frequency_points)
-            vals += list(np.real(t.kr.to_numpy()))
+            vals += list(np.real(self._low_points(axis).kr.to_numpy()))
         if not vals:
             raise ValueError(f"no K_R point has coherence >= {self.coherence_min}")
         return float(np.mean(vals))
+
+    def low_frequency_table(self) -> pd.DataFrame:
+        """Where :attr:`kr_low_frequency` comes from, per axis.
+
+        Returns
+        -------
+        pandas.DataFrame
+            ``axis``; ``low_frequency_points_omega_min`` / ``_max`` [rad/s] and
+            ``low_frequency_points_coherence_mean`` of the averaged points, and their
+            mean ``re_kr_low_frequency_points`` [-] (NaN, not averaged, when an axis has
+            no coherent point); beside them ``omega_band_bottom`` [rad/s], the first
+            frequency of the band, with its ``kr_magnitude_band_bottom`` [-] and
+            ``coherence_band_bottom`` (which may be below the threshold).
+        """
+        rows = []
+        t = self.table
+        for axis in sorted(set(t.axis)):
+            used = self._low_points(axis)
+            a = t[(t.axis == axis) & (t.omega >= self.band[0])].sort_values("omega")
+            bottom = a.iloc[0]
+            rows.append({"axis": axis, "low_frequency_points_omega_min": used.omega.min(),
+                         "low_frequency_points_omega_max": used.omega.max(),
+                         "low_frequency_points_coherence_mean": used.coherence.mean(),
+                         "re_kr_low_frequency_points": float(np.mean(np.real(used.kr))) if len(used) else np.nan,
+                         "omega_band_bottom": bottom.omega, "kr_magnitude_band_bottom": abs(bottom.kr),
+                         "coherence_band_bottom": bottom.coherence})
+        return pd.DataFrame(rows)
 
     def constants(self) -> pd.DataFrame:
         """The constant values, per axis and together, beside the literature."""
@@ -250,8 +285,7 @@ class WakeDistortionResult:
 
 def _identified_lbar22(responses, n_points):
     """Lbar22 from the inverted low-frequency lambda/C (mean of the 1s and 1c diagonals)."""
-    g0 = np.real(responses.select(_OUTPUTS, _INPUTS[:3]).frdata[:, :, :n_points].mean(axis=2))
-    inv = np.linalg.inv(g0)
+    inv = _low_frequency_inverse(responses, n_points, outputs=list(_OUTPUTS), inputs=list(_INPUTS[:3]))
     return float(0.5 * (inv[1, 1] + inv[2, 2]))
 
 

@@ -98,7 +98,10 @@ class SweepSpec:
         flap wakes only): a sweep of the rotor's multiblade flap coordinate about
         its trim value, which excites the flap rates ``beta1s_dot``/``beta1c_dot``
         independently of the loads (the flap-rate input of Eq. 4.11, Sec. 6.3).
-    kind : {"sweep", "doublet", "sine"}
+    kind : {"sweep", "doublet", "sine", "step"}
+        ``"step"``: zero until ``trim_start``, a linear ramp over ``pulse_width``
+        to ``amplitude``, then held to ``duration`` (the quasi-steady check,
+        :func:`aircraft.identification.quasi_steady_check`).
     amplitude : float
         [rad].
     duration : float
@@ -106,7 +109,7 @@ class SweepSpec:
     w_min, w_max : float
         Sweep frequency range [rad/s] (``"sine"`` uses ``w_min``).
     pulse_width : float
-        Doublet pulse width [s].
+        Doublet pulse width, or the step's ramp time [s].
     trim_start, trim_end : float
         Sweep trim lead-in/out [s].
     seed : int or None
@@ -130,8 +133,8 @@ class SweepSpec:
     label: str = ""
 
     def __post_init__(self):
-        if self.kind not in ("sweep", "doublet", "sine"):
-            raise SweepSpecError(f"SweepSpec.kind must be 'sweep', 'doublet' or 'sine', got {self.kind!r}")
+        if self.kind not in ("sweep", "doublet", "sine", "step"):
+            raise SweepSpecError(f"SweepSpec.kind must be 'sweep', 'doublet', 'sine' or 'step', got {self.kind!r}")
         self._validate()
 
     def _validate(self):
@@ -148,6 +151,9 @@ class SweepSpec:
         for name in ("trim_start", "trim_end"):
             _real(e, f"SweepSpec.{name}", getattr(self, name), nonnegative=True, unit="s")
         _real(e, "SweepSpec.noise_fraction", self.noise_fraction, nonnegative=True)
+        if self.kind == "step" and not self.trim_start + self.pulse_width < self.duration:
+            raise e(f"SweepSpec step: trim_start + pulse_width ({self.trim_start} + {self.pulse_width} s) must "
+                    f"end before duration ({self.duration} s), or nothing is held")
         if self.kind == "sweep" and not self.w_max > self.w_min:
             raise e(f"SweepSpec.w_max ({self.w_max}) must exceed w_min ({self.w_min}) [rad/s]")
         if self.seed is not None and (isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer))):
@@ -294,6 +300,8 @@ def sweep_inputs(spec: SweepSpec, dt: float):
         from flightid import doublet
         return doublet(spec.amplitude, spec.pulse_width, dt, spec.duration)
     t = np.arange(0.0, spec.duration + 0.5 * dt, dt)
+    if spec.kind == "step":
+        return t, spec.amplitude * np.clip((t - spec.trim_start) / spec.pulse_width, 0.0, 1.0)
     return t, spec.amplitude * np.sin(spec.w_min * t)
 
 
