@@ -4,9 +4,12 @@ Every results folder written through the ``rotorwake`` command line carries a
 ``manifest.json``:
 
 * ``code``: package version, ``git describe --always --dirty`` and a dirty flag;
-* ``sources``: the SHA-256 of every project module the run imported (taken from
-  ``sys.modules`` after the run, so it is exactly the code the numbers came from,
-  defaults and constants included);
+* ``sources``: the SHA-256 of every project module the study can have run: the
+  static import closure of the study's module (:func:`import_closure`, every
+  ``import`` statement, those inside functions included) together with what the run
+  newly put in ``sys.modules`` (dynamic imports). Neither depends on what an earlier
+  study in the same process loaded, so ``rotorwake results`` (every study in one
+  process) records for each study the code it can depend on, no more;
 * ``settings`` and ``settings_hash``: the command and its explicit options;
 * ``date`` (UTC, ISO 8601), ``wall_time_s`` [s], ``machine`` (cores, platform,
   Python / numpy / numba versions);
@@ -22,6 +25,7 @@ one machine is checked on another.
 """
 from __future__ import annotations
 
+import ast
 import datetime as _dt
 import hashlib
 import json
@@ -32,7 +36,8 @@ import sys
 from pathlib import Path
 
 __all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "ResultsManifestError", "code_version",
-           "settings_hash", "file_sha256", "imported_sources", "write_manifest", "read_manifest",
+           "settings_hash", "file_sha256", "imported_sources", "import_closure", "write_manifest",
+           "read_manifest",
            "check_results"]
 
 #: File name of the manifest in each results folder.
@@ -127,8 +132,85 @@ def settings_hash(settings):
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-def imported_sources(root=None, packages=PROJECT_PACKAGES):
-    """SHA-256 of each project module now in ``sys.modules``.
+def _module_file(name, root):
+    """File of project module ``name`` under ``root`` (package ``__init__`` or module), or None."""
+    base = root.joinpath(*name.split("."))
+    for candidate in (base / "__init__.py", base.with_suffix(".py")):
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def _imported_names(path, name):
+    """Absolute names of the modules ``path`` (module ``name``) imports, anywhere in it."""
+    tree = ast.parse(path.read_text(), filename=str(path))
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found += [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                parts = package.split(".")
+                stem = ".".join(parts[:len(parts) - node.level + 1])
+                mod = f"{stem}.{node.module}" if node.module else stem
+            else:
+                mod = node.module or ""
+            found.append(mod)
+            # "from pkg import sub" may name a submodule
+            found += [f"{mod}.{alias.name}" for alias in node.names if alias.name != "*"]
+    return found
+
+
+def import_closure(module, root=None, packages=PROJECT_PACKAGES):
+    """Project modules ``module`` can import, directly or through others: its static closure.
+
+    Every ``import`` and ``from ... import`` statement counts, inside functions too
+    (the library imports lazily), and importing ``a.b.c`` imports the packages
+    ``a`` and ``a.b``. The closure over-approximates what one run executes, which is
+    the safe side for a staleness check: it is what a study's numbers can depend on,
+    whatever an earlier study in the same process loaded.
+
+    Parameters
+    ----------
+    module : str
+        Dotted name of a project module (e.g. ``"studies.coaxial_quasi_steady"``).
+    root : str or pathlib.Path, optional
+        Project root (default: the folder above this package).
+    packages : sequence of str
+        Top-level packages that are the project's.
+
+    Returns
+    -------
+    list of str
+        Dotted module names, sorted, ``module`` included.
+
+    Raises
+    ------
+    ModuleNotFoundError
+        If ``module`` is not a project module under ``root``.
+    """
+    root = (Path(root) if root is not None else _project_root()).resolve()
+    if module.split(".")[0] not in packages or _module_file(module, root) is None:
+        raise ModuleNotFoundError(f"{module!r} is not a module of {tuple(packages)} under {root}")
+    seen, todo = set(), [module]
+    while todo:
+        name = todo.pop()
+        parts = name.split(".")
+        for k in range(1, len(parts) + 1):        # parent packages run their __init__
+            sub = ".".join(parts[:k])
+            if sub in seen or parts[0] not in packages:
+                continue
+            path = _module_file(sub, root)
+            if path is None:
+                continue
+            seen.add(sub)
+            todo += [n for n in _imported_names(path, sub) if n.split(".")[0] in packages]
+    return sorted(seen)
+
+
+def imported_sources(root=None, packages=PROJECT_PACKAGES, modules=None):
+    """SHA-256 of each project module now in ``sys.modules`` (or of ``modules``).
 
     Parameters
     ----------
@@ -137,6 +219,9 @@ def imported_sources(root=None, packages=PROJECT_PACKAGES):
         copy elsewhere is skipped).
     packages : sequence of str
         Top-level package names to record.
+    modules : iterable of str, optional
+        Dotted module names to record instead of everything in ``sys.modules``
+        (e.g. :func:`import_closure` of a study plus what its run imported).
 
     Returns
     -------
@@ -144,11 +229,14 @@ def imported_sources(root=None, packages=PROJECT_PACKAGES):
         ``{relative posix path: sha256}``, sorted by path.
     """
     root = (Path(root) if root is not None else _project_root()).resolve()
+    if modules is None:
+        items = [(name, getattr(module, "__file__", None)) for name, module in list(sys.modules.items())]
+    else:
+        items = [(name, _module_file(name, root)) for name in modules]
     found = {}
-    for name, module in list(sys.modules.items()):
+    for name, path in items:
         if name.split(".")[0] not in packages:
             continue
-        path = getattr(module, "__file__", None)
         if not path:
             continue
         path = Path(path).resolve()
