@@ -199,7 +199,7 @@ def import_closure(module, root=None, packages=PROJECT_PACKAGES):
         parts = name.split(".")
         for k in range(1, len(parts) + 1):        # parent packages run their __init__
             sub = ".".join(parts[:k])
-            if sub in seen or parts[0] not in packages:
+            if sub in seen:
                 continue
             path = _module_file(sub, root)
             if path is None:

@@ -21,6 +21,7 @@ results are run so).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import tempfile
 import time
@@ -50,28 +51,29 @@ def run(out_dir="results/coaxial_quasi_steady", small=False, n_jobs=2, cache=Tru
     out.mkdir(parents=True, exist_ok=True)
     tables, walls = [], []
     checks = {}
-    fresh = None if cache else tempfile.TemporaryDirectory(prefix="quasi_steady_wake_")
-    cache_dir = "default" if cache else fresh.name
-    for label, name in MODELS:
-        model = IdentifiedInflow.from_file(name)
-        t0 = time.perf_counter()
-        # the wake records are the same for every model: the first call runs them, the
-        # others read them from the (default or temporary) wake cache
-        check = quasi_steady_check(model, config, ct=recipe.ct, settings=settings, hold_s=hold, window=window,
-                                   n_jobs=n_jobs, progress=False, cache_dir=cache_dir)
-        walls.append({"model": label, "wall_s": time.perf_counter() - t0,
-                      "wake_records": "computed" if not walls and not cache else "cache"})
-        checks[label] = check
-        tables.append(check.table.assign(inflow_model=label, file=name))
-    if fresh is not None:
-        fresh.cleanup()
+    with contextlib.ExitStack() as stack:
+        # --no-cache: a temporary cache of this run only, so the first model computes the
+        # records and the others read them back; removed on the way out, error or not
+        cache_dir = "default" if cache else stack.enter_context(
+            tempfile.TemporaryDirectory(prefix="quasi_steady_wake_"))
+        # with the default cache the first call may have computed or read the records
+        first_source = "default cache" if cache else "computed"
+        for label, name in MODELS:
+            model = IdentifiedInflow.from_file(name)
+            t0 = time.perf_counter()
+            check = quasi_steady_check(model, config, ct=recipe.ct, settings=settings, hold_s=hold,
+                                       window=window, n_jobs=n_jobs, progress=False, cache_dir=cache_dir)
+            walls.append({"model": label, "wall_s": time.perf_counter() - t0,
+                          "wake_records": "cache" if walls else first_source})
+            checks[label] = check
+            tables.append(check.table.assign(inflow_model=label, file=name))
     # the wake's settling and load changes belong to the records, the same for every model
-    first = next(iter(checks.values()))
-    settle = first.settling
+    settle = next(iter(checks.values())).settling
+    loads = next(iter(checks.values())).load_changes
     table = pd.concat(tables, ignore_index=True)
     table.to_csv(out / "table.csv", index=False)
     settle.to_csv(out / "settling.csv", index=False)
-    first.load_changes.reset_index().to_csv(out / "load_changes.csv", index=False)
+    loads.reset_index().to_csv(out / "load_changes.csv", index=False)
     pd.DataFrame(walls).to_csv(out / "wall_times.csv", index=False)
     fig = _figure(table)
     fig.savefig(out / "steps.png", dpi=90)
