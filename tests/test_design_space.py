@@ -109,7 +109,10 @@ def test_scheduled_model_is_the_identified_model_of_the_interpolated_matrices():
                                             omega=OMEGA, rotors=("U", "L"), loads_ref=_refs(s, c)[0],
                                             inflow_ref=model.inflow_ref)
     # same realisation path (from_matrices, Padé 2, minreal): equal DC gains and poles
-    np.testing.assert_allclose(control.dcgain(model.system), control.dcgain(direct.system), rtol=1e-9, atol=1e-12)
+    g_model, g_direct = control.dcgain(model.system), control.dcgain(direct.system)
+    # structural zeros come out as round-off (~1e-12 against gains of ~20): absolute
+    # tolerance relative to the largest gain
+    np.testing.assert_allclose(g_model, g_direct, rtol=1e-9, atol=1e-9 * np.abs(g_direct).max())
     np.testing.assert_allclose(np.sort_complex(model.system.poles()), np.sort_complex(direct.system.poles()),
                                rtol=1e-8)
     assert model.n_states == direct.n_states and model.input_names == direct.input_names
