@@ -89,6 +89,10 @@ class WakeSensitivityResult:
         return fig
 
 
+def _wrap_deg(x):
+    return (np.asarray(x) + 180.0) % 360.0 - 180.0
+
+
 def wake_setting_sensitivity(config, variants, *, base=None, ct=None, trim=None, controls, outputs,
                              seeds=None, frequencies=None, sweep_s=45.0, amplitude=math.radians(1.0), w_min=0.5,
                              w_max=30.0, n_jobs=2, cache_dir="default", progress=True):
@@ -178,6 +182,5 @@ def wake_setting_sensitivity(config, variants, *, base=None, ct=None, trim=None,
                                  "phase_deg": float(np.degrees(np.angle(h[k]))), "coherence": float(coh[k]),
                                  "base_coherence": float(c0[k]),
                                  "d_mag_db": 20 * np.log10(abs(h[k]) / abs(h0[k])),
-                                 # the angle of the ratio is already within +-180 deg
-                                 "d_phase_deg": float(np.degrees(np.angle(h[k] / h0[k])))})
+                                 "d_phase_deg": float(_wrap_deg(np.degrees(np.angle(h[k] / h0[k]))))})
     return WakeSensitivityResult(pd.DataFrame(rows), {k: dict(v) for k, v in variants.items()}, walls)
