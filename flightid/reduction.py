@@ -74,7 +74,7 @@ def _runaway(before, after, runaway_factor, max_condition, refuse_flat):
 
 def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_rise_average=2.0,
            max_rise_single=10.0, protected=(), max_steps=100, progress=False, runaway_factor=100.0,
-           max_condition=1e10, refuse_flat=True, **fit_kwargs) -> ReductionResult:
+           max_condition=1e10, refuse_flat=True, batch=1, **fit_kwargs) -> ReductionResult:
     """Remove insensitive / poorly determined parameters while the fit stays good.
 
     Parameters
@@ -97,11 +97,21 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         units) exceeds this and rose more than 1000-fold. None disables.
     refuse_flat : bool
         Refuse a removal after which the fit has more flat directions than before.
+    max_steps : int
+        Refits tried (one per removal attempt).
+    batch : int
+        Candidates removed together in one refit (the ``batch`` worst), for large
+        structures (the 180-parameter Eq. 6.5 start): the group is kept only if
+        the joint removal passes every check a single removal must (the cost
+        rises count for the group as a whole), else its worst member is tried
+        alone in the same step. 1 (default): one at a time, Fig. 6.1.
 
     Returns
     -------
     ReductionResult
     """
+    if isinstance(batch, bool) or not isinstance(batch, (int, np.integer)) or batch < 1:
+        raise IdentificationError(f"batch must be an integer >= 1, got {batch!r}")
     current = fit(structure, data, **fit_kwargs)
     initial = current
     pairs = [(p.output, p.input) for p in current.pairs]
@@ -110,37 +120,23 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
     tried = set(protected)
     log = []
     bar = tqdm(total=None, desc="reduce", disable=not progress)
-    for _ in range(max_steps):
-        table = current.parameters[current.parameters.status == "free"]
-        table = table[~table.parameter.isin(tried)]
-        ins = table[table.insensitivity_pct > insensitivity_max].sort_values("insensitivity_pct", ascending=False)
-        crb = table[table.cramer_rao_pct > cramer_rao_max].sort_values("cramer_rao_pct", ascending=False)
-        if len(ins):
-            name, reason, metric = ins.parameter.iloc[0], "insensitivity", ins.insensitivity_pct.iloc[0]
-        elif len(crb):
-            name, reason, metric = crb.parameter.iloc[0], "cramer_rao", crb.cramer_rao_pct.iloc[0]
-        else:
-            break
-        tried.add(name)
+
+    def attempt(names):
+        """Refit with ``names`` fixed at zero: (trial or None, accepted, log fields)."""
         idle = []
-        trial_structure = current.structure.fix(name, 0.0)
-        entry = {"parameter": name, "reason": reason, "metric_pct": metric,
-                 "J_ave_before": current.J_ave}
+        trial_structure = current.structure.fix(list(names), 0.0)
         try:
             if not trial_structure.free_names:
                 raise IdentificationError("no free parameter would remain")
             trial = fit(trial_structure, data, **fit_kwargs)
             # a removal can leave parameters without any influence (the pole of a
             # mode whose gain was removed): hold them where they are, not at zero
-            idle = [n for n in trial.degeneracy.no_influence if n != name]
+            idle = [n for n in trial.degeneracy.no_influence if n not in names]
             if idle and len(idle) < len(trial.structure.free_names):
                 trial = fit(trial.structure.fix(idle), data, **fit_kwargs)
         except (UnstableModelError, IdentificationError) as err:
-            entry.update(J_ave_after=float("nan"), max_single_rise=float("nan"), accepted=False,
-                         runaway=False, note=str(err)[:120])
-            log.append(entry)
-            bar.update()
-            continue
+            return None, False, dict(J_ave_after=float("nan"), max_single_rise=float("nan"), accepted=False,
+                                     runaway=False, note=str(err)[:120])
         before = current.costs
         rise = max(trial.costs[k] - before[k] for k in before)
         cost_ok = (trial.J_ave - current.J_ave <= max_rise_average) and rise <= max_rise_single
@@ -149,9 +145,48 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         note = "" if ok else (f"runaway, no finite optimum: {why}; kept" if why else "cost rise too large; kept")
         if ok and idle:
             note = f"also held fixed (no influence left): {idle}"
-        entry.update(J_ave_after=trial.J_ave, max_single_rise=rise, accepted=ok, runaway=bool(why),
-                     note=note)
-        log.append(entry)
+        return trial, ok, dict(J_ave_after=trial.J_ave, max_single_rise=rise, accepted=ok, runaway=bool(why),
+                               note=note)
+
+    steps = 0
+    while steps < max_steps:
+        table = current.parameters[current.parameters.status == "free"]
+        table = table[~table.parameter.isin(tried)]
+        ins = table[table.insensitivity_pct > insensitivity_max].sort_values("insensitivity_pct", ascending=False)
+        crb = table[table.cramer_rao_pct > cramer_rao_max].sort_values("cramer_rao_pct", ascending=False)
+        # the worst first: insensitive parameters, then poorly determined ones
+        candidates = [(n, "insensitivity", m) for n, m in zip(ins.parameter, ins.insensitivity_pct)]
+        candidates += [(n, "cramer_rao", m) for n, m in zip(crb.parameter, crb.cramer_rao_pct)
+                       if n not in set(ins.parameter)]
+        if not candidates:
+            break
+        group = candidates[:batch]
+        if len(group) > 1:
+            # several at once (a large structure): kept only if the joint removal passes
+            # every check of a single one; otherwise the worst is tried alone below
+            names = [g[0] for g in group]
+            steps += 1
+            trial, ok, fields = attempt(names)
+            bar.update()
+            if ok:
+                for name, reason, metric in group:
+                    log.append({"parameter": name, "reason": reason, "metric_pct": metric,
+                                "J_ave_before": current.J_ave, **fields,
+                                "note": f"removed with {len(group) - 1} others. {fields['note']}".strip()})
+                tried.update(names)
+                current = trial
+                continue
+            log.append({"parameter": ", ".join(names), "reason": "batch", "metric_pct": group[0][2],
+                        "J_ave_before": current.J_ave, **fields,
+                        "note": f"batch of {len(group)} refused ({fields['note']}); one at a time"})
+            if steps >= max_steps:
+                break
+        name, reason, metric = candidates[0]
+        tried.add(name)
+        steps += 1
+        trial, ok, fields = attempt([name])
+        log.append({"parameter": name, "reason": reason, "metric_pct": metric, "J_ave_before": current.J_ave,
+                    **fields})
         if ok:
             current = trial
         bar.update()

@@ -4,8 +4,9 @@ Thin study over :mod:`aircraft.identification.coaxial_200kt`:
 
 1. :func:`identify_coaxial_forward`: the coaxial of ``coaxial_compound(cruise=True)``
    at 200 kt (mu = 0.54, rotor AoA 2 deg), the wake trimmed to the thrust the
-   aircraft needs there (torque-balanced, zero hub moments: the wake trim cannot
-   target a lift offset), six control sweeps, the Eq. 6.5 structure
+   aircraft needs there (torque-balanced) and to the aircraft's own per-rotor
+   lift offsets at its differential lateral cyclic (``--lift-offset``; zero
+   pitch moments), six control sweeps, the Eq. 6.5 structure
    (:class:`CoaxialForward12State`, 180 parameters at the start) fitted from a
    data-driven start and reduced automatically (Fig. 6.1), verified on a
    lower-rotor lateral doublet (Figs. 6.29-6.33) beside the wake's noise floor;
@@ -35,8 +36,9 @@ import pandas as pd
 
 from aircraft.configs import coaxial_compound
 from aircraft.identification import CoaxialForward12State, IdentificationSettings
-from aircraft.identification.coaxial_200kt import (aircraft_thrust_at, cost_table_beside_dissertation,
-                                                   identify_coaxial_forward, isolated_rotor_check)
+from aircraft.identification.coaxial_200kt import (aircraft_lift_offset, aircraft_thrust_at,
+                                                   cost_table_beside_dissertation, identify_coaxial_forward,
+                                                   isolated_rotor_check)
 from aircraft.inflow import IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_200KT_12STATE, in_rotor_frames
 from aircraft.wake import WakeSettings
@@ -98,9 +100,14 @@ def main(argv=None):
                         help="fit the near-wake half of Eq. 6.5 only (72 parameters instead of 180)")
     parser.add_argument("--no-reduce", action="store_true", help="skip the automatic reduction")
     parser.add_argument("--lift-offset", type=float, default=0.03,
-                        help="differential lateral cyclic of the aircraft trim [rad]")
+                        help="differential lateral cyclic of the aircraft trim [rad]; the wake is trimmed to "
+                             "the per-rotor lift offsets the aircraft has there")
+    parser.add_argument("--balanced-wake", action="store_true",
+                        help="trim the wake to zero hub moments instead (the earlier study)")
     parser.add_argument("--max-reduction-steps", type=int, default=100,
                         help="removals tried by the automatic reduction (one refit each)")
+    parser.add_argument("--reduction-batch", type=int, default=1,
+                        help="parameters the reduction removes together per refit (1: one at a time)")
     parser.add_argument("--jobs", type=int, default=2, help="wake worker processes")
     parser.add_argument("--no-cache", action="store_true",
                         help="do not read or write the wake cache (the printed wall times are then the data set's)")
@@ -113,10 +120,13 @@ def main(argv=None):
     pd.set_option("display.width", 200)
     settings, structure = settings_for(args.small, args.sweep_s, not args.no_reduce, args.near_wake_only)
     config = coaxial_compound(cruise=True)
-    ct_total = aircraft_thrust_at(config)
+    ct_total = aircraft_thrust_at(config, lift_offset=args.lift_offset)
+    los = (0.0, 0.0) if args.balanced_wake else aircraft_lift_offset(config,
+                                                                      lateral_cyclic_difference=args.lift_offset)
     model = identify_coaxial_forward(config, ct_total=ct_total, structure=structure, settings=settings,
                                      n_jobs=args.jobs, progress=False, cache_dir=None if args.no_cache else "default",
-                                     max_reduction_steps=args.max_reduction_steps)
+                                     max_reduction_steps=args.max_reduction_steps, lift_offset=los,
+                                     reduction_batch=args.reduction_batch)
     t_id = time.perf_counter() - t0
     cost = cost_table_beside_dissertation(model)
     params = parameter_table(model)
@@ -142,6 +152,9 @@ def main(argv=None):
           f"{ws.n_elements} elements; sweeps {settings.sweep_s:g} s; structure {structure!r}")
     print(f"wake trim (system C_T {ct_total:.5f} from the aircraft trim): C_T U/L {o['CT_U']:.5f}/{o['CT_L']:.5f}"
           f" (dissertation ~0.0073/0.0065), lam0 U/L {o['lam0_U']:.4f}/{o['lam0_L']:.4f}")
+    print(f"lift offset: target U/L {los[0]:.3f}/{los[1]:.3f} (the aircraft's at {args.lift_offset:g} rad "
+          f"differential lateral cyclic{'; not used, --balanced-wake' if args.balanced_wake else ''}), "
+          f"wake -C_L/C_T U/L {-o['CL_U'] / o['CT_U']:.3f}/{-o['CL_L'] / o['CT_L']:.3f}")
     print(cost.to_string(index=False, float_format=fmt))
     print(f"J_ave = {model.J_ave:.1f} over {len(model.cost_table)} responses (Table 6.3: 77.0); "
           f"{len(free)} free parameters of {len(params)} (dissertation: ~90 of 180 kept)")

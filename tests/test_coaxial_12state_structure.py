@@ -98,3 +98,22 @@ def test_excitations_and_staged_plan_name_real_parameters():
     # the delays belong to the first (quasi-steady) stage, and the structure's hash knows them
     assert {"t11", "t41", "t52"} <= set(plan[0].free)
     assert st.spec()["delays"] is True and "delays" not in Coaxial12State().spec()
+
+
+def test_far_wake_loads_add_the_cyclic_load_columns_of_the_far_wake():
+    plain, extra = Coaxial12State(delays=True), Coaxial12State(delays=True, far_wake_loads=True)
+    added = set(extra.parameter_names()) - set(plain.parameter_names())
+    # lam1sF <- CL_U, CL_L of each rotor (Eq. 6.2 rows 4 and 10, columns 2 and 7); the
+    # lam1c rows are tied to them
+    assert added == {"g4_2", "g4_7", "g10_2", "g10_7"}
+    assert set(plain.parameter_names()) <= set(extra.parameter_names())
+    # the far-wake stage frees them; the hash knows the option, the default's stays
+    assert added <= set(extra.staged_plan()[2].free)
+    assert extra.spec()["far_wake_loads"] is True and "far_wake_loads" not in plain.spec()
+    rng = np.random.default_rng(1)
+    values = {n: rng.uniform(0.1, 1.0) for n in extra.parameter_names()}
+    G = extra.build(values, 23.7).matrices()["G"]
+    cols = extra.inputs
+    # row 6 (lam1cF_U) takes CM_U with the tied value, CM_L with the cross-rotor sign flip
+    assert G[5, cols.index("CM_U")] == pytest.approx(values["g4_2"])
+    assert G[5, cols.index("CM_L")] == pytest.approx(-values["g4_7"])

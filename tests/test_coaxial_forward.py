@@ -161,8 +161,34 @@ def test_trim_request_and_condition():
     assert SPEED_200KT * math.cos(fc.alpha) / (rot.omega * rot.radius) == pytest.approx(0.54, abs=0.01)
     with pytest.raises(ValueError, match="ct_total"):
         forward_trim_request(-0.01)
+    # a lift offset joins the request only when it is not zero (cached balanced runs stay valid)
+    assert "lift_offset" not in forward_trim_request(0.01248, lift_offset=0.0)
+    assert forward_trim_request(0.01248, lift_offset=0.1)["lift_offset"] == (0.1, 0.1)
+    assert forward_trim_request(0.01248, lift_offset=(0.02, -0.01))["lift_offset"] == (0.02, -0.01)
+    with pytest.raises(ValueError, match="one value or two"):
+        forward_trim_request(0.01248, lift_offset=(0.1, 0.1, 0.1))
+    with pytest.raises(ValueError, match="lift_offset"):
+        forward_trim_request(0.01248, lift_offset=0.9)
     with pytest.raises(ValueError, match="speed"):
         forward_flight_condition(speed=0.0)
+
+
+def test_aircraft_lift_offset_follows_the_differential_cyclic():
+    # the aircraft's per-rotor LOS = -C_L/C_T from its own trim, recomputed here from the
+    # trim loads; more differential lateral cyclic moves both rotors' lift to their
+    # advancing sides (measured 0.0 rad: -0.042/-0.069, 0.06 rad: 0.096/0.078)
+    from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
+    from aircraft.identification.coaxial_200kt import SPEED_200KT, aircraft_lift_offset
+    from aircraft.inflow import IsolatedRotors
+    from aircraft.configs import coaxial_compound
+    cfg = coaxial_compound(cruise=True)
+    low, high = aircraft_lift_offset(cfg, lateral_cyclic_difference=0.0), \
+        aircraft_lift_offset(cfg, lateral_cyclic_difference=0.06)
+    assert all(h > lo + 0.1 for h, lo in zip(high, low))
+    tr = trim(Helicopter(cfg, IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
+              TrimCondition(speed=SPEED_200KT, lateral_cyclic_difference=0.06))
+    for r, los in zip("UL", high):
+        assert los == pytest.approx(-tr.loads[f"CL_{r}"] / tr.loads[f"CT_{r}"], abs=5e-4)   # the rounding
 
 
 def test_isolated_rotor_check_bad_input_and_single_rotor():

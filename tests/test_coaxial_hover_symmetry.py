@@ -66,10 +66,13 @@ def _turn_labels(labels, psi, lower_sign):
     return t
 
 
+@pytest.mark.parametrize("far_wake_loads", [False, True])
 @pytest.mark.parametrize("frame, lower_sign, invariant", [("rotor", -1.0, True), ("printed", 1.0, True),
                                                           ("rotor", 1.0, False), ("printed", -1.0, False)])
-def test_twelve_state_ties_are_invariant_under_a_turn_of_the_hover_wake(frame, lower_sign, invariant):
-    st = Coaxial12State(frame)
+def test_twelve_state_ties_are_invariant_under_a_turn_of_the_hover_wake(frame, lower_sign, invariant,
+                                                                        far_wake_loads):
+    # far_wake_loads: the extra load columns of the cyclic far-wake rows follow the same ties
+    st = Coaxial12State(frame, far_wake_loads=far_wake_loads)
     rng = np.random.default_rng(5)
     values = {n: rng.uniform(0.05, 1.0) * (1.0 if n[0] == "t" else rng.choice([-1.0, 1.0]))
               for n in st.parameter_names()}

@@ -148,6 +148,34 @@ def test_redundant_parameter_is_flagged_and_removed_by_reduce():
     assert {"parameter", "reason", "accepted"} <= set(red.log.columns)
 
 
+def test_batch_reduction_removes_redundant_modes_together():
+    # truth: one first-order mode 4/(s+2); structure: that mode plus three redundant
+    # modes of fixed poles whose gains (truth 0) are all insensitive. One at a time,
+    # removing g4 first leaves g2 and g3 trading off along a flat direction, so that
+    # removal is refused and g4 stays (insensitivity 555 %); removed together in one
+    # refit, all three go and the kept mode is the truth.
+    t, u = frequency_sweep(0.5, 30.0, 80.0, 0.01, seed=2)
+    import scipy.signal as sig
+    _, y, _ = sig.lsim(sig.lti([4.0], [1, 2.0]), u, t)
+    y = y + 0.01 * y.std() * np.random.default_rng(0).standard_normal(y.size)
+    data = frequency_response(t, u, y, w_min=1.0, w_max=30, input_name="u", output_names=["y"])
+    F = [["-a", 0, 0, 0], [0, -5.0, 0, 0], [0, 0, -10.0, 0], [0, 0, 0, -20.0]]
+    structure = FGCStructure(F, [["g1"], ["g2"], ["g3"], ["g4"]], [[1.0, 1.0, 1.0, 1.0]], inputs=["u"],
+                             outputs=["y"], initial={"a": 1.0, "g1": 2.0, "g2": 0.3, "g3": 0.3, "g4": 0.3})
+    single = reduce(structure, data, protected=["a", "g1"])
+    batched = reduce(structure, data, protected=["a", "g1"], batch=3)
+    assert set(single.removed) == {"g2", "g3"}
+    assert set(batched.removed) == {"g2", "g3", "g4"}
+    assert batched.log.note.str.startswith("removed with 2 others").all() and len(batched.log) == 3
+    free = batched.result.parameters[batched.result.parameters.status == "free"]
+    assert (free.cramer_rao_pct < 20).all() and (free.insensitivity_pct < 10).all()
+    # 2 %: 1 % output noise, 80 s record (as above)
+    assert batched.result.structure.values["a"] == pytest.approx(2.0, rel=0.02)
+    assert batched.result.structure.values["g1"] == pytest.approx(4.0, rel=0.02)
+    with pytest.raises(IdentificationError, match="batch must be an integer"):
+        reduce(structure, data, batch=0)
+
+
 def test_verify_gives_small_tic_on_the_truth_model():
     # (e) truth model converted with Padé delays vs exact-delay scipy simulation of a doublet
     P = COAXIAL_HOVER_6STATE

@@ -25,6 +25,9 @@
                    thrust, DesignSpaceResult (table, plot, .schedule() -> ScheduledInflow)
     quasi_steady.py  quasi_steady_check: a model's DC gain against held steps of the wake
                    (what a fit on 1-25 rad/s cannot see), QuasiSteadyCheck
+    starts.py      equation-error starts of the M/Lbar/tau structures (M from Im(H^-1))
+    wake_sensitivity.py  wake_setting_sensitivity: the same sweeps on wakes differing in
+                   chosen WakeSettings, tabulated differences (WakeSensitivityResult)
 
 The wake (numba) is imported only when a pipeline runs.
 """
@@ -48,6 +51,8 @@ from .wake_distortion import (KR_CONTROLS, WakeDistortionResult, identify_wake_d
 from .design_space import (KEY_PARAMETERS, DesignPoint, DesignSpaceError, DesignSpaceResult,
                            identify_design_space, spaced_config)
 from .quasi_steady import QuasiSteadyCheck, quasi_steady_check
+from .starts import equation_error_masses, equation_error_start
+from .wake_sensitivity import WakeSensitivityResult, wake_setting_sensitivity
 
 STRUCTURES[SingleRotorForward.key] = SingleRotorForward
 
@@ -69,4 +74,5 @@ __all__ = ["CoaxialForward12State", "IsolatedRotorCheck", "forward_flight_condit
            "wake_distortion_from_runs",
            "KEY_PARAMETERS", "DesignPoint", "DesignSpaceError",
            "DesignSpaceResult", "identify_design_space", "spaced_config",
-           "QuasiSteadyCheck", "quasi_steady_check", "TRUST_J_AVE_MAX", "low_frequency_gain", "low_frequency_points"]
+           "QuasiSteadyCheck", "quasi_steady_check", "TRUST_J_AVE_MAX", "low_frequency_gain", "low_frequency_points",
+           "equation_error_masses", "equation_error_start", "WakeSensitivityResult", "wake_setting_sensitivity"]

@@ -16,12 +16,13 @@ trim with Isolated Rotors, :func:`aircraft_thrust_at`), split equally with the
 torques balanced and zero hub moments on each rotor (mode ``"torque_balance"``;
 the forward-flight wake trim measures its Jacobian on the wake).
 
-Lift offset: :func:`aircraft.wake.trim_wake` trims each rotor's hub moments to
-zero and cannot target a roll moment, so the wake (and the identified model) is
-linearised about the moment-balanced rotor; the aircraft's lift-offset trim
-(``lateral_cyclic_difference``) then sits at the loads the identified model's
-``loads_ref`` is offset from, which a linear model about a zero-moment trim
-covers only to first order (say so in the results).
+Lift offset: the aircraft holds a differential lateral cyclic at trim (§7.2,
+``lateral_cyclic_difference``), which leaves each rotor with a roll moment;
+:func:`aircraft_lift_offset` reads the per-rotor lift offsets LOS = -C_L/C_T of
+that trim, and ``identify_coaxial_forward(lift_offset=...)`` trims the wake to
+them (:func:`aircraft.wake.trim_wake` ``lift_offset``), so that the identified
+model is linearised about the rotor loads the aircraft flies at. 0: the
+moment-balanced rotors of the wake trim before (C_L = C_M = 0 on each rotor).
 """
 from __future__ import annotations
 
@@ -32,7 +33,7 @@ import numpy as np
 import pandas as pd
 
 __all__ = ["SPEED_200KT", "ROTOR_AOA", "FIGS_7_7_TO_7_10", "forward_flight_condition",
-           "aircraft_thrust_at", "forward_trim_request", "identify_coaxial_forward",
+           "aircraft_thrust_at", "aircraft_lift_offset", "forward_trim_request", "identify_coaxial_forward",
            "cost_table_beside_dissertation", "IsolatedRotorCheck", "isolated_rotor_check"]
 
 #: 200 kt [m/s] and the rotor angle of attack of §6.6 [rad].
@@ -104,7 +105,38 @@ def aircraft_thrust_at(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lift
     return 2.0 * float(f"{0.5 * (tr.loads['CT_U'] + tr.loads['CT_L']):.3g}")
 
 
-def forward_trim_request(ct_total, *, tol=1e-4, max_iter=30):
+def aircraft_lift_offset(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lateral_cyclic_difference=0.03):
+    """Per-rotor lift offsets of the aircraft's trim, ``(LOS_U, LOS_L)`` = -C_L/C_T [-].
+
+    Parameters
+    ----------
+    config : AircraftConfig, optional
+        Default ``coaxial_compound(cruise=True)``.
+    speed : float
+        Flight speed [m/s].
+    rotor_aoa : float
+        Rotor angle of attack [rad].
+    lateral_cyclic_difference : float
+        Differential lateral cyclic held at the aircraft trim [rad] (§7.2).
+
+    Returns
+    -------
+    tuple of float
+        Each rotor's roll moment over thrust x R towards its advancing side, from
+        the aircraft's trim with Isolated Rotors, rounded to 3 decimals (the wake
+        cache keys on the values; 1e-3 of LOS is 5e-6 of C_L at C_T ~ 0.005,
+        below the 1e-4 tolerance of the 200 kt wake trim).
+    """
+    from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
+    from aircraft.inflow import IsolatedRotors
+    config = _config(config)
+    tr = trim(Helicopter(config, IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
+              TrimCondition(speed=_speed(speed), rotor_aoa=rotor_aoa,
+                            lateral_cyclic_difference=lateral_cyclic_difference))
+    return tuple(round(-float(tr.loads[f"CL_{r}"]) / float(tr.loads[f"CT_{r}"]), 3) + 0.0 for r in ("U", "L"))
+
+
+def forward_trim_request(ct_total, *, lift_offset=0.0, tol=1e-4, max_iter=30):
     """The wake trim request at 200 kt (keyword arguments of :func:`aircraft.wake.trim_wake`).
 
     Parameters
@@ -116,24 +148,38 @@ def forward_trim_request(ct_total, *, tol=1e-4, max_iter=30):
     max_iter : int
         Trim iterations (the 200 kt trim converged in 9 on the coarse wake).
 
+    lift_offset : float or (float, float)
+        Lift offset LOS [-] of both rotors or per rotor (upper, lower), see
+        :func:`aircraft.wake.trim_wake`; 0 (default): moment-balanced rotors.
+
     Returns
     -------
     dict
-        ``{"ct": (c/2, c/2), "mode": "torque_balance", "tol": tol, "max_iter": max_iter}``.
+        ``{"ct": (c/2, c/2), "mode": "torque_balance", "tol": tol, "max_iter": max_iter}``,
+        plus ``"lift_offset": (LOS_U, LOS_L)`` when it is not zero (absent otherwise,
+        so the requests and cached runs of the moment-balanced trim stay the same).
 
     Raises
     ------
     ValueError
-        If ``ct_total`` is not a positive finite number.
+        If ``ct_total`` is not a positive finite number, or a lift offset is not
+        a finite number in [-0.5, 0.5].
     """
     from aircraft._validation import real
     c = real(ValueError, "ct_total", ct_total, positive=True, hi=0.1)
-    return {"ct": (c / 2.0, c / 2.0), "mode": "torque_balance", "tol": float(tol), "max_iter": int(max_iter)}
+    los = lift_offset if isinstance(lift_offset, (tuple, list, np.ndarray)) else (lift_offset, lift_offset)
+    if len(los) != 2:
+        raise ValueError(f"lift_offset needs one value or two (upper, lower), got {len(los)}")
+    los = tuple(real(ValueError, "lift_offset", v, lo=-0.5, hi=0.5) for v in los)
+    request = {"ct": (c / 2.0, c / 2.0), "mode": "torque_balance", "tol": float(tol), "max_iter": int(max_iter)}
+    if any(los):
+        request["lift_offset"] = los
+    return request
 
 
 def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, ct_total=None,
                              structure=None, settings=None, n_jobs=2, cache_dir="default", progress=True,
-                             name=None, max_reduction_steps=100):
+                             name=None, max_reduction_steps=100, lift_offset=0.0, reduction_batch=1):
     """Identify the 200 kt coaxial inflow model (Eq. 6.5 structure) from our free wake.
 
     Parameters
@@ -165,6 +211,14 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         skips it, as ``settings.reduce=False`` does. The pipeline fits, then the
         reduction runs here with this bound (``provenance["max_reduction_steps"]``);
         the doublet verification is then redone on the reduced model.
+    reduction_batch : int
+        Candidates the reduction removes together per refit (:func:`flightid.reduce`
+        ``batch``): the 180-parameter start removes ~100 parameters, one refit
+        each at 1 (the default, Fig. 6.1).
+    lift_offset : float or (float, float)
+        Lift offset of the wake trim [-], both rotors or (upper, lower): e.g.
+        :func:`aircraft_lift_offset`, the aircraft's own (see
+        :func:`forward_trim_request`).
 
     Returns
     -------
@@ -186,7 +240,8 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         raise ValueError(f"max_reduction_steps must be an integer >= 0, got {max_reduction_steps!r}")
     if ct_total is None:
         ct_total = aircraft_thrust_at(config, speed, rotor_aoa)
-    condition, request = forward_flight_condition(speed, rotor_aoa), forward_trim_request(ct_total)
+    condition = forward_flight_condition(speed, rotor_aoa)
+    request = forward_trim_request(ct_total, lift_offset=lift_offset)
     name = name or f"coaxial {speed / 0.514444:.0f} kt {structure.key} from our wake"
     # the pipeline fits once; the reduction (one refit per removal, 180 parameters at
     # the start) runs here so that its number of steps can be bounded
@@ -200,7 +255,8 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     s = settings
     reduction = reduce(model.fit.structure, model.responses, insensitivity_max=s.insensitivity_max,
                        cramer_rao_max=s.cramer_rao_max, protected=structure.protected, progress=progress,
-                       max_steps=max_reduction_steps, frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega,
+                       max_steps=max_reduction_steps, batch=reduction_batch,
+                       frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega,
                        coherence_min=s.coherence_min)
     ss = reduction.result.structure.to_statespace(pade_order=s.pade_order)
     ref = pd.Series(model.trim.outputs)
@@ -209,7 +265,7 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     floor = _verify(ss, zero, ref, structure.inputs, structure.outputs)
     digest, payload = identification_hash(config, condition, structure, settings, trim=request)
     provenance = {**model.provenance, "reduction": "aircraft.identification.coaxial_200kt",
-                  "max_reduction_steps": max_reduction_steps,
+                  "max_reduction_steps": max_reduction_steps, "reduction_batch": reduction_batch,
                   "reduction_wall_s": round(time.perf_counter() - t0, 1)}
     return dataclasses.replace(model, fit=reduction.result, reduction=reduction, verification=check,
                                noise_floor=floor, settings=settings, settings_hash=digest,

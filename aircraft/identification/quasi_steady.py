@@ -170,6 +170,7 @@ def quasi_steady_check(model, config, ct=None, *, trim=None, settings=None, cond
     """
     import time
     from aircraft.inflow import IdentifiedInflow
+    from aircraft.inflow.base import flap_rate_names
     from aircraft.wake import FlightCondition, SweepSpec, run_sweeps
     from .pipeline import IdentificationSettings, IdentifiedModel, _trim_request
 
@@ -198,7 +199,9 @@ def quasi_steady_check(model, config, ct=None, *, trim=None, settings=None, cond
     runs = run_sweeps(config, settings.wake_settings, condition or FlightCondition(), specs,
                       trim=_trim_request(config, ct, trim), n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
     sys = inflow.system
-    loads = [n for n in sys.input_labels if not n.endswith("_dot") and "_dot_" not in n]
+    # the loads are the inputs that are not flap rates (named as the inflow models name them)
+    rates = set(flap_rate_names(["" if len(rotors) == 1 else r for r in rotors]))
+    loads = [n for n in sys.input_labels if n not in rates]
     g = np.asarray(sys.dcgain()).reshape(len(sys.output_labels), len(sys.input_labels))
     g = g[:, [sys.input_labels.index(n) for n in loads]]
     rows, settle, d_loads = [], [], {}

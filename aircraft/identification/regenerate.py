@@ -63,10 +63,10 @@ RECIPES = {
         "Coaxial compound (Table B.1), hover, system C_T 0.0096: 6-state M/Lbar/tau (Eq. 5.3 "
         "structure, our rotor frames) identified from our free-vortex wake (default resolution)"),
     "coaxial_hover_12state": Recipe(
-        "coaxial_compound", "coaxial_12state_delays", 0.0053 + 0.0043,
+        "coaxial_compound", "coaxial_12state_far_loads", 0.0053 + 0.0043,
         "Coaxial compound (Table B.1), hover, system C_T 0.0096: 12-state near/far-wake F/G/C model "
-        "with flap-rate inputs (Eqs. 6.2-6.3 structure plus the 6-state's lambda/C delays, our rotor "
-        "frames), fitted in stages (§6.4.3) "
+        "with flap-rate inputs (Eqs. 6.2-6.3 structure plus the 6-state's lambda/C delays and the "
+        "cyclic loads feeding the cyclic far wake, our rotor frames), fitted in stages (§6.4.3) "
         "from six swashplate and four prescribed tip-path-plane sweeps of our free-vortex wake "
         "(default resolution)"),
 }

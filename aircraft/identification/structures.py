@@ -419,6 +419,14 @@ class Coaxial12State(InflowStructure):
         near/far states reproduces: without the delays the 12-state fitted the
         cross-rotor cyclic responses 2.5x worse than the 6-state. Default False
         (the printed structure).
+    far_wake_loads : bool
+        Also feed the cyclic far-wake states from the cyclic loads of both rotors
+        (``lam1sF <- C_L``, ``lam1cF <- C_M``: 8 entries, 4 parameters after the
+        ties), which Eq. 6.3 feeds only from the flap rates and the near wake
+        (Eq. 6.7's forward-flight G has them). In our coaxial hover wake the lower
+        rotor's cyclic inflow reverses sign over ~2 s after a cyclic step (late /
+        early response -3.7, ``results/coaxial_quasi_steady/settling.csv``): a
+        slow far-wake response to the loads themselves. Default False (Eq. 6.3).
     """
 
     key = "coaxial_12state"
@@ -427,10 +435,16 @@ class Coaxial12State(InflowStructure):
     uses_flap_rates = True
     protected = tuple(f"f{k}_{k}" for k in range(1, 13))
 
-    def __init__(self, frame="rotor", tied=True, delays=False):
+    def __init__(self, frame="rotor", tied=True, delays=False, far_wake_loads=False):
         super().__init__(frame)
         self.tied = bool(tied)
         self.delays = bool(delays)
+        self.far_wake_loads = bool(far_wake_loads)
+        extra = set()
+        if self.far_wake_loads:
+            for r0 in (0, 6):       # lam1sF <- CL_U, CL_L; lam1cF <- CM_U, CM_L (Eq. 6.2 orders)
+                extra |= {(r0 + 4, 2), (r0 + 4, 7), (r0 + 6, 4), (r0 + 6, 9)}
+        self._g_free = sorted(set(_G_FREE) | extra)
 
     #: A bound on each fit's cost evaluations: with ~50 parameters an unbounded
     #: trust-region run crawled for over 10 minutes along the flat directions the
@@ -443,10 +457,13 @@ class Coaxial12State(InflowStructure):
         out = {**super().spec(), "tied": self.tied, "fit_options": dict(self.fit_options)}
         if self.delays:          # absent when False: the hashes of delay-free models stay
             out["delays"] = True
+        if self.far_wake_loads:  # likewise
+            out["far_wake_loads"] = True
         return out
 
     def __repr__(self):
-        return f"Coaxial12State(frame={self.frame!r}, tied={self.tied}, delays={self.delays})"
+        extra = ", far_wake_loads=True" if self.far_wake_loads else ""
+        return f"Coaxial12State(frame={self.frame!r}, tied={self.tied}, delays={self.delays}{extra})"
 
     def _tau_pattern(self):
         """6 x 10 delay names (canonical inputs) or None: the 6-state's pattern on the loads."""
@@ -481,7 +498,7 @@ class Coaxial12State(InflowStructure):
         for i, j in _F_FREE:
             F[i - 1][j - 1] = self._name("f", i, j)
         G62 = [[0] * 10 for _ in range(12)]
-        for i, j in _G_FREE:
+        for i, j in self._g_free:
             G62[i - 1][j - 1] = self._name("g", i, j)
         # columns to the canonical input order (loads, then flap rates)
         G = [[row[_EQ62_INPUTS.index(c)] for c in self.inputs] for row in G62]
@@ -507,7 +524,7 @@ class Coaxial12State(InflowStructure):
         """Names of the structure's parameters (after ties)."""
         tau = self._tau_pattern() or []
         return sorted({self._name("f", i, j).lstrip("-") for i, j in _F_FREE}
-                      | {self._name("g", i, j).lstrip("-") for i, j in _G_FREE}
+                      | {self._name("g", i, j).lstrip("-") for i, j in self._g_free}
                       | {n for row in tau for n in row if isinstance(n, str)})
 
     def _delay_names(self):
@@ -546,7 +563,7 @@ class Coaxial12State(InflowStructure):
                 vals[name] = -l0[near[i], near[j]] / m[near[i]]
             elif i == j:                      # far-wake pole
                 vals[name] = -0.25
-        for i, j in _G_FREE:
+        for i, j in self._g_free:
             name = self._name("g", i, j)
             if name.lstrip("-") != f"g{i}_{j}":
                 continue
@@ -570,10 +587,10 @@ class Coaxial12State(InflowStructure):
         """
         from flightid import Stage
         near_f = [(i, j) for i, j in _F_FREE if i in self._NEAR and j in self._NEAR]
-        near_g = [(i, j) for i, j in _G_FREE if i in self._NEAR and "beta" not in _EQ62_INPUTS[j - 1]]
-        flap_g = [(i, j) for i, j in _G_FREE if i in self._NEAR and "beta" in _EQ62_INPUTS[j - 1]]
+        near_g = [(i, j) for i, j in self._g_free if i in self._NEAR and "beta" not in _EQ62_INPUTS[j - 1]]
+        flap_g = [(i, j) for i, j in self._g_free if i in self._NEAR and "beta" in _EQ62_INPUTS[j - 1]]
         far_f = [(i, j) for i, j in _F_FREE if i not in self._NEAR]
-        far_g = [(i, j) for i, j in _G_FREE if i not in self._NEAR]
+        far_g = [(i, j) for i, j in self._g_free if i not in self._NEAR]
         harm = {"lam0": "CT", "lam1s": "CL", "lam1c": "CM"}
         load_pairs = [(f"{h}_{r}", f"{c}_{q}") for h, c in harm.items() for r in self.rotors for q in self.rotors]
         flap_pairs = [(f"lam1{a}_{r}", f"beta1{a}_dot_{q}") for a in "sc" for r in self.rotors for q in self.rotors]
@@ -601,7 +618,7 @@ class Coaxial12State(InflowStructure):
             name = self._name("f", i, j)
             if name.lstrip("-") == f"f{i}_{j}":
                 vals[f"f{i}_{j}"] = float(F[i - 1, j - 1])
-        for i, j in _G_FREE:
+        for i, j in self._g_free:
             name = self._name("g", i, j)
             if name.lstrip("-") == f"g{i}_{j}":
                 vals[f"g{i}_{j}"] = float(G[i - 1, j - 1])
@@ -612,7 +629,10 @@ class Coaxial12State(InflowStructure):
 STRUCTURES = {"single_rotor_3state": SingleRotor3State, "coaxial_6state": Coaxial6State,
               "coaxial_12state": Coaxial12State,
               # Eq. 6.2 plus the 6-state's lambda/C delays: the structure shipped from our wake
-              "coaxial_12state_delays": lambda: Coaxial12State(delays=True)}
+              "coaxial_12state_delays": lambda: Coaxial12State(delays=True),
+              # the same with the cyclic far wake fed by the loads (in our wake the lower
+              # rotor's cyclic inflow reverses sign slowly after a cyclic step)
+              "coaxial_12state_far_loads": lambda: Coaxial12State(delays=True, far_wake_loads=True)}
 
 
 def get_structure(structure):

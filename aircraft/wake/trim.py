@@ -53,6 +53,8 @@ class WakeTrim:
     fd_jacobians : int
         Finite-difference Jacobians measured (each ``revs_per_iter`` revolutions per
         unknown on top of the iterations); 0 with the blade-element estimate.
+    lift_offset : tuple of float
+        The lateral lift offset trimmed to, per rotor [-] (``C_L = -LOS C_T``).
     """
 
     controls: dict
@@ -62,6 +64,7 @@ class WakeTrim:
     residual: float
     history: list = field(default_factory=list)
     fd_jacobians: int = 0
+    lift_offset: tuple = ()
 
     def to_pandas(self):
         """History of the iterations as a DataFrame."""
@@ -116,6 +119,18 @@ def _check_blade_loading(wake, ct, mode):
                 residuals={f"CT{rotor_suffix(rot.name)}": float(c)})
 
 
+def _lift_offsets(wake, lift_offset):
+    """One lift offset [-] per rotor from a number or a per-rotor sequence, each in [-0.5, 0.5]."""
+    n = len(wake.rotors)
+    if isinstance(lift_offset, (list, tuple, np.ndarray)):
+        if len(lift_offset) != n:
+            raise WakeInputError(f"lift_offset needs one value or one per rotor ({n}), got {len(lift_offset)}")
+        items = list(lift_offset)
+    else:
+        items = [lift_offset] * n
+    return tuple(_real(WakeInputError, "lift_offset", v, lo=-0.5, hi=0.5) for v in items)
+
+
 def _residual_names(wake, mode, cyclic):
     names = [r.name for r in wake.rotors]
     if mode == "thrust":
@@ -128,7 +143,7 @@ def _residual_names(wake, mode, cyclic):
     return out
 
 
-def _residual(wake, out, ct, mode, cyclic):
+def _residual(wake, out, ct, mode, cyclic, lift_offset=(0.0, 0.0)):
     res = []
     names = [r.name for r in wake.rotors]
     if mode == "thrust":
@@ -139,8 +154,11 @@ def _residual(wake, out, ct, mode, cyclic):
         res.append(out[f"CT{su}"] + out[f"CT{sl}"] - ct.sum())
         res.append(out[f"CQ{su}"] - out[f"CQ{sl}"])
     if cyclic:
-        for n in names:
-            res += [out[f"CL{rotor_suffix(n)}"], out[f"CM{rotor_suffix(n)}"]]
+        for n, los in zip(names, lift_offset):
+            x = rotor_suffix(n)
+            # lift offset: C_L = -LOS C_T puts the centre of lift LOS R towards the
+            # advancing side (psi = 90 deg, where blade_sum_loads counts lift negative)
+            res += [out[f"CL{x}"] + los * out[f"CT{x}"], out[f"CM{x}"]]
     return np.array(res)
 
 
@@ -182,7 +200,7 @@ def _jacobian_estimate(wake, ct, mode, cyclic):
     return J
 
 
-def _fd_jacobian(wake, names, ct, mode, cyclic, res0, start, n_steps, h):
+def _fd_jacobian(wake, names, ct, mode, cyclic, res0, start, n_steps, h, lift_offset):
     """One-sided finite-difference Jacobian d(residual)/d(controls) [1/rad] of the wake.
 
     ``res0`` is the residual of the ``n_steps`` march just made from the state
@@ -197,7 +215,7 @@ def _fd_jacobian(wake, names, ct, mode, cyclic, res0, start, n_steps, h):
     for j, n in enumerate(names):
         wake.restore(start)
         wake.controls[n] += h
-        J[:, j] = (_residual(wake, wake.march(n_steps), ct, mode, cyclic) - res0) / h
+        J[:, j] = (_residual(wake, wake.march(n_steps), ct, mode, cyclic, lift_offset) - res0) / h
     wake.restore(end)
     return J
 
@@ -205,7 +223,7 @@ def _fd_jacobian(wake, names, ct, mode, cyclic, res0, start, n_steps, h):
 def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_per_iter=2,
               tol=2e-5, max_iter=20, damping=0.8, update_jacobian=False, jacobian="auto",
               fd_step=math.radians(0.5), fd_refresh=math.radians(3.0), max_time=None,
-              raise_on_failure=True):
+              raise_on_failure=True, lift_offset=0.0):
     """Time-march the wake to a periodic state and adjust the controls to the targets.
 
     Parameters
@@ -270,6 +288,14 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         Raise :class:`WakeTrimError` when the trim does not converge (default).
         False returns the unconverged :class:`WakeTrim` (``converged=False``)
         for inspection; :func:`~aircraft.wake.run_sweeps` refuses it either way.
+    lift_offset : float or sequence of float
+        Lateral lift offset LOS [-] (forward flight, ``cyclic`` trim), one for
+        every rotor or one per rotor: rotor r is trimmed to a roll moment of
+        LOS_r x thrust x R towards its advancing side (psi = 90 deg of its own
+        frame), ``C_L = -LOS C_T`` in our sign convention, instead of zero;
+        ``C_M`` stays zero. On a coaxial equal offsets cancel in the body axes
+        (the advancing sides are opposite), as in §7.2's lift-offset trim.
+        0 (default): moment-balanced rotors.
 
     Returns
     -------
@@ -297,10 +323,15 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         max_time = _real(e, "max_time", max_time, positive=True, unit="s")
     if cyclic is not None and not isinstance(cyclic, bool):
         raise e(f"cyclic must be True, False or None, got {cyclic!r}")
+    lift_offset = _lift_offsets(wake, lift_offset)
     t_start = time.perf_counter()
     ct = _targets(wake, ct, mode)
     if cyclic is None:
         cyclic = wake.flight.speed > 1.0
+    if any(lift_offset) and (not cyclic or wake.flight.speed <= 1.0):
+        raise WakeInputError(
+            f"lift_offset = {lift_offset} needs forward flight (an advancing side) and the cyclic "
+            f"trim (cyclic=True); got speed {wake.flight.speed:g} m/s, cyclic={cyclic}")
     names = _unknowns(wake, cyclic)
     if jacobian == "auto":
         jacobian = "fd" if wake.flight.speed > 1.0 else "estimate"
@@ -350,7 +381,7 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         except WakeDivergedError as err:
             failure = f"the wake diverged at iteration {it} ({err})"
             break
-        res = _residual(wake, out, ct, mode, cyclic)
+        res = _residual(wake, out, ct, mode, cyclic, lift_offset)
         history.append({**{n: wake.controls[n] for n in names}, **out,
                         "iteration": it, "residual": float(np.abs(res).max())})
         if not np.all(np.isfinite(res)):
@@ -374,7 +405,7 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
         if jacobian == "fd" and (J is None or np.abs(x - x_jac).max() > fd_refresh
                                  or np.abs(res).max() > 2.0 * np.abs(res_prev).max()):
             J = _fd_jacobian(wake, names, ct, mode, cyclic, res, start, revs_per_iter * nrev,
-                             fd_step)
+                             fd_step, lift_offset)
             x_jac = x.copy()
             n_jacobians += 1
         if update_jacobian and res_prev is not None:
@@ -400,7 +431,7 @@ def trim_wake(wake, ct=None, *, mode="thrust", cyclic=None, settle_revs=3, revs_
     result = WakeTrim(controls=dict(wake.controls), outputs=out or {}, converged=converged,
                       iterations=len(history),
                       residual=history[-1]["residual"] if history else float("nan"),
-                      history=history, fd_jacobians=n_jacobians)
+                      history=history, fd_jacobians=n_jacobians, lift_offset=lift_offset)
     residuals = {n: float(r) for n, r in zip(res_names, res)}
     if failure is None and not converged:
         failure = f"not converged in max_iter = {max_iter} iterations"
