@@ -172,6 +172,13 @@ def test_batch_reduction_removes_redundant_modes_together():
     # 2 %: 1 % output noise, 80 s record (as above)
     assert batched.result.structure.values["a"] == pytest.approx(2.0, rel=0.02)
     assert batched.result.structure.values["g1"] == pytest.approx(4.0, rel=0.02)
+    # a batch that fails a check is logged as refused and its worst member tried alone
+    # in the same step (here every removal raises J_ave by more than the 1e-6 allowed)
+    strict = reduce(structure, data, protected=["a", "g1"], batch=3, max_rise_average=1e-6, max_steps=2)
+    assert strict.log.reason.tolist() == ["batch", "insensitivity"]
+    assert strict.log.parameter.iloc[0] == "g4, g2, g3" and strict.log.parameter.iloc[1] == "g4"
+    assert "one at a time" in strict.log.note.iloc[0] and not strict.log.accepted.any()
+    assert strict.removed == []
     with pytest.raises(IdentificationError, match="batch must be an integer"):
         reduce(structure, data, batch=0)
 
