@@ -5,7 +5,7 @@ Thin study over :mod:`aircraft.identification.coaxial_200kt`:
 1. :func:`identify_coaxial_forward`: the coaxial of ``coaxial_compound(cruise=True)``
    at 200 kt (mu = 0.54, rotor AoA 2 deg), the wake trimmed to the thrust the
    aircraft needs there (torque-balanced) and to the aircraft's own per-rotor
-   lift offsets at its differential lateral cyclic (``--lift-offset``; zero
+   lift offsets at its differential lateral cyclic (``--lateral-cyclic-difference``; zero
    pitch moments), six control sweeps, the Eq. 6.5 structure
    (:class:`CoaxialForward12State`, 180 parameters at the start) fitted from a
    data-driven start and reduced automatically (Fig. 6.1), verified on a
@@ -99,7 +99,7 @@ def main(argv=None):
     parser.add_argument("--near-wake-only", action="store_true",
                         help="fit the near-wake half of Eq. 6.5 only (72 parameters instead of 180)")
     parser.add_argument("--no-reduce", action="store_true", help="skip the automatic reduction")
-    parser.add_argument("--lift-offset", type=float, default=0.03,
+    parser.add_argument("--lateral-cyclic-difference", type=float, default=0.03,
                         help="differential lateral cyclic of the aircraft trim [rad]; the wake is trimmed to "
                              "the per-rotor lift offsets the aircraft has there")
     parser.add_argument("--balanced-wake", action="store_true",
@@ -120,9 +120,9 @@ def main(argv=None):
     pd.set_option("display.width", 200)
     settings, structure = settings_for(args.small, args.sweep_s, not args.no_reduce, args.near_wake_only)
     config = coaxial_compound(cruise=True)
-    ct_total = aircraft_thrust_at(config, lift_offset=args.lift_offset)
-    los = (0.0, 0.0) if args.balanced_wake else aircraft_lift_offset(config,
-                                                                      lateral_cyclic_difference=args.lift_offset)
+    ct_total = aircraft_thrust_at(config, lateral_cyclic_difference=args.lateral_cyclic_difference)
+    dlat = args.lateral_cyclic_difference
+    los = (0.0, 0.0) if args.balanced_wake else aircraft_lift_offset(config, lateral_cyclic_difference=dlat)
     model = identify_coaxial_forward(config, ct_total=ct_total, structure=structure, settings=settings,
                                      n_jobs=args.jobs, progress=False, cache_dir=None if args.no_cache else "default",
                                      max_reduction_steps=args.max_reduction_steps, lift_offset=los,
@@ -152,7 +152,7 @@ def main(argv=None):
           f"{ws.n_elements} elements; sweeps {settings.sweep_s:g} s; structure {structure!r}")
     print(f"wake trim (system C_T {ct_total:.5f} from the aircraft trim): C_T U/L {o['CT_U']:.5f}/{o['CT_L']:.5f}"
           f" (dissertation ~0.0073/0.0065), lam0 U/L {o['lam0_U']:.4f}/{o['lam0_L']:.4f}")
-    print(f"lift offset: target U/L {los[0]:.3f}/{los[1]:.3f} (the aircraft's at {args.lift_offset:g} rad "
+    print(f"lift offset: target U/L {los[0]:.3f}/{los[1]:.3f} (the aircraft's at {dlat:g} rad "
           f"differential lateral cyclic{'; not used, --balanced-wake' if args.balanced_wake else ''}), "
           f"wake -C_L/C_T U/L {-o['CL_U'] / o['CT_U']:.3f}/{-o['CL_L'] / o['CT_L']:.3f}")
     print(cost.to_string(index=False, float_format=fmt))
@@ -169,7 +169,7 @@ def main(argv=None):
         inflows = {"MFW ID (ours)": model.to_inflow(), **inflows}
     except ValueError as err:      # an unstable identified model is refused by the aircraft
         print(f"our identified model cannot go into the aircraft: {err}")
-    check = isolated_rotor_check(inflows, config=config, lift_offset=args.lift_offset)
+    check = isolated_rotor_check(inflows, config=config, lateral_cyclic_difference=dlat)
     check.to_pandas().to_csv(out / "responses.csv", index=False)
     # the band §7.4.2.1 discusses (2-3 dB between 5 and 20 rad/s), beside the 1-20 rad/s verdict band
     diff = pd.concat([check.differences.assign(band="1-20 rad/s"),
@@ -180,7 +180,7 @@ def main(argv=None):
     verdicts.to_csv(out / "verdicts.csv", index=False)
     check.poles.to_csv(out / "poles.csv", index=False)
     check.plot().savefig(out / "bare_airframe_200kt.png", dpi=70)
-    print(f"\nbare airframe at 200 kt (lift offset {args.lift_offset:g} rad), largest difference from "
+    print(f"\nbare airframe at 200 kt (differential lateral cyclic {dlat:g} rad), largest difference from "
           f"Isolated Rotors (verdict over {check.band[0]:g}-{check.band[1]:g} rad/s, "
           f"{check.threshold_db:g} dB / {check.threshold_deg:g} deg):")
     print(diff.to_string(index=False, float_format=fmt))

@@ -75,7 +75,16 @@ def forward_flight_condition(speed=SPEED_200KT, rotor_aoa=ROTOR_AOA):
     return FlightCondition(speed=_speed(speed), alpha=float(rotor_aoa))
 
 
-def aircraft_thrust_at(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lift_offset=0.0):
+def _aircraft_trim(config, speed, rotor_aoa, lateral_cyclic_difference):
+    """The aircraft's trim with Isolated Rotors at ``speed`` [m/s], ``rotor_aoa`` [rad]."""
+    from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
+    from aircraft.inflow import IsolatedRotors
+    return trim(Helicopter(_config(config), IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
+                TrimCondition(speed=_speed(speed), rotor_aoa=rotor_aoa,
+                              lateral_cyclic_difference=lateral_cyclic_difference))
+
+
+def aircraft_thrust_at(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lateral_cyclic_difference=0.0):
     """System thrust coefficient the aircraft trims to (Isolated Rotors), C_T_U + C_T_L [-].
 
     Parameters
@@ -86,9 +95,9 @@ def aircraft_thrust_at(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lift
         Flight speed [m/s].
     rotor_aoa : float
         Rotor angle of attack [rad].
-    lift_offset : float
+    lateral_cyclic_difference : float
         Differential lateral cyclic of the aircraft trim [rad]
-        (:class:`aircraft.helicopter.TrimCondition` ``lateral_cyclic_difference``).
+        (:class:`aircraft.helicopter.TrimCondition`).
 
     Returns
     -------
@@ -97,11 +106,7 @@ def aircraft_thrust_at(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lift
         cache keys on the value; the rounding, < 5e-6 per rotor, is below the wake
         trim's tolerance of 1e-4).
     """
-    from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
-    from aircraft.inflow import IsolatedRotors
-    config = _config(config)
-    tr = trim(Helicopter(config, IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
-              TrimCondition(speed=_speed(speed), rotor_aoa=rotor_aoa, lateral_cyclic_difference=lift_offset))
+    tr = _aircraft_trim(config, speed, rotor_aoa, lateral_cyclic_difference)
     return 2.0 * float(f"{0.5 * (tr.loads['CT_U'] + tr.loads['CT_L']):.3g}")
 
 
@@ -127,12 +132,7 @@ def aircraft_lift_offset(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, la
         cache keys on the values; 1e-3 of LOS is 5e-6 of C_L at C_T ~ 0.005,
         below the 1e-4 tolerance of the 200 kt wake trim).
     """
-    from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
-    from aircraft.inflow import IsolatedRotors
-    config = _config(config)
-    tr = trim(Helicopter(config, IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
-              TrimCondition(speed=_speed(speed), rotor_aoa=rotor_aoa,
-                            lateral_cyclic_difference=lateral_cyclic_difference))
+    tr = _aircraft_trim(config, speed, rotor_aoa, lateral_cyclic_difference)
     return tuple(round(-float(tr.loads[f"CL_{r}"]) / float(tr.loads[f"CT_{r}"]), 3) + 0.0 for r in ("U", "L"))
 
 
@@ -255,7 +255,7 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     s = settings
     reduction = reduce(model.fit.structure, model.responses, insensitivity_max=s.insensitivity_max,
                        cramer_rao_max=s.cramer_rao_max, protected=structure.protected, progress=progress,
-                       max_steps=max_reduction_steps, batch=reduction_batch,
+                       max_steps=max_reduction_steps, batch=reduction_batch, **structure.fit_options,
                        frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega,
                        coherence_min=s.coherence_min)
     ss = reduction.result.structure.to_statespace(pade_order=s.pade_order)
@@ -381,8 +381,8 @@ class IsolatedRotorCheck:
         return fig
 
 
-def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lift_offset=0.03,
-                         band=(1.0, 20.0), threshold_db=1.0, threshold_deg=10.0, omega=None, settings=None,
+def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA,
+                         lateral_cyclic_difference=0.03, band=(1.0, 20.0), threshold_db=1.0, threshold_deg=10.0, omega=None, settings=None,
                          max_trim_s=None):
     """Bare-airframe responses at 200 kt with each inflow model beside Isolated Rotors (Figs. 7.7-7.10).
 
@@ -396,7 +396,7 @@ def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=R
         Default ``coaxial_compound(cruise=True)``.
     speed, rotor_aoa : float
         Trim [m/s], [rad].
-    lift_offset : float
+    lateral_cyclic_difference : float
         Differential lateral cyclic held at trim [rad] (§7.2); the dissertation
         prints no value. Default 0.03 rad: the aircraft with Eqs. 6.12-6.13 trims
         there (and at 0), not at 0.1 rad (measured: no trim, residual 216).
@@ -438,7 +438,8 @@ def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=R
     models = {reference: IsolatedRotors()} if reference not in inflows else {}
     models.update(inflows)
     config = _config(config)
-    condition = TrimCondition(speed=_speed(speed), rotor_aoa=rotor_aoa, lateral_cyclic_difference=lift_offset)
+    condition = TrimCondition(speed=_speed(speed), rotor_aoa=rotor_aoa,
+                              lateral_cyclic_difference=lateral_cyclic_difference)
     settings = settings or HelicopterSettings(n_span=8, n_average=4)
     omega = np.logspace(-1, np.log10(40.0), 200) if omega is None else np.asarray(omega, float)
     # trimmed here (no wall-clock budget: the 200 kt trims with 12 inflow states take

@@ -97,6 +97,11 @@ class CoaxialForward12State(InflowStructure):
     uses_flap_rates = False
     #: every diagonal of ``F``: without one a state has no dynamics of its own
     protected = tuple(f"f{k}_{k}" for k in range(1, 13))
+    #: A bound on each fit's cost evaluations (the pipeline's fit and every refit of
+    #: the reduction): from the 180-parameter optimum (J_ave 1.6, 80 flat directions)
+    #: the reduction's first refit crawled for over 34 min with scipy's default
+    #: budget of 200 x (n + 1); one evaluation with its Jacobian takes ~0.15 s.
+    fit_options = {"max_nfev": 150}
 
     def __init__(self, frame="rotor", near_wake_only=False):
         super().__init__(frame)
@@ -107,7 +112,7 @@ class CoaxialForward12State(InflowStructure):
             self.protected = tuple(f"f{k}_{k}" for k in range(1, 13, 2))
 
     def spec(self):
-        return {**super().spec(), "near_wake_only": self.near_wake_only}
+        return {**super().spec(), "near_wake_only": self.near_wake_only, "fit_options": dict(self.fit_options)}
 
     def __repr__(self):
         return f"CoaxialForward12State(frame={self.frame!r}, near_wake_only={self.near_wake_only})"

@@ -32,8 +32,9 @@ __all__ = ["IdentificationSettings", "IdentifiedModel", "PipelineError", "identi
 
 #: Version of the pipeline's numerical recipe; part of every settings hash. Bump it
 #: when a change would alter an identified model (start, fit, reduction, signals).
-PIPELINE_VERSION = "pipeline-3"   # 2: apparent-mass diagonals protected in the reduction;
-#                                    3: the data-driven start uses the lowest *coherent* points
+PIPELINE_VERSION = "pipeline-4"   # 2: apparent-mass diagonals protected in the reduction;
+#                                    3: the data-driven start uses the lowest *coherent* points;
+#                                    4: structures may add starts (6-state: equation-error M)
 
 #: The CIFER guideline on the average cost of a trusted model (Tischler & Remple:
 #: J_ave <= 100 is acceptable; the dissertation's own fits went above it, 171 for Eq. 5.3).
@@ -378,7 +379,7 @@ def _verify(model, run, ref, inputs, outputs):
     return verify(model, run["t"].to_numpy(), u, y, remove_initial=False)
 
 
-def _start_candidates(structure, responses, s):
+def _start_candidates(structure, responses, s, omega=None):
     """The data-driven starts: from the ``start_points`` lowest frequencies, and (when it
     differs) from the lowest points where every load element is coherent.
 
@@ -392,6 +393,9 @@ def _start_candidates(structure, responses, s):
     coherent = structure.initial_values(responses, s.start_points, coherence_min=s.coherence_min)
     if coherent != starts[0][1]:
         starts.append((f"lowest points with coherence >= {s.coherence_min:g}", coherent))
+    if omega is not None:
+        # structure-specific starts (the 6-state's equation-error M), when they exist
+        starts += structure.extra_starts(responses, omega)
     return starts
 
 
@@ -406,7 +410,7 @@ def _fit_and_verify(structure, responses, runs, doublet_spec, zero_spec, wake_tr
     fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min,
                       **structure.fit_options)
     staged, plan = None, structure.staged_plan()
-    candidates = _start_candidates(structure, responses, s)
+    candidates = _start_candidates(structure, responses, s, omega)
     if len(candidates) == 1 and not plan:
         # one start: the reduction's own first fit is the full fit
         flight_structure = structure.build(candidates[0][1], omega)

@@ -16,11 +16,10 @@ masses) stops at J_ave ~690 with the collective cross masses of the wrong sign,
 and eight scattered starts reach only 643; from :func:`equation_error_start` it
 recovers every parameter (``tests/test_coaxial_6state_start.py``).
 
-Not yet a start of :func:`identify_inflow`: wiring it in changes the pipeline's
-recipe (``PIPELINE_VERSION``), and with it every shipped model and results folder,
-which are regenerated together. On our default coaxial hover wake the start is
-unstable anyway (the lower rotor's collective apparent mass comes out negative,
--0.18, a pole at +185 rad/s), so there it would not be offered.
+A start of :func:`identify_inflow` through :meth:`Coaxial6State.extra_starts`
+(since ``pipeline-4``), offered only when stable. On our default coaxial hover
+wake it is unstable (the lower rotor's collective apparent mass comes out
+negative, -0.18, a pole at +185 rad/s), so there it is not offered.
 """
 from __future__ import annotations
 
