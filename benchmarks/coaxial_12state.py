@@ -2,8 +2,9 @@
 
 One run prints, on this machine:
 
-* the wake data set of :func:`aircraft.identify_inflow` for
-  :class:`aircraft.identification.Coaxial12State` at the default resolution:
+* the wake data set of :func:`aircraft.identify_inflow` for the shipped 12-state
+  structure (``regenerate.RECIPES["coaxial_hover_12state"]``: Eq. 6.3 with the
+  6-state's delays and the cyclic far-wake load terms) at the default resolution:
   trim, six swashplate sweeps, four prescribed tip-path-plane sweeps (45 s each),
   the verification doublet and the zero-input run, on ``--jobs`` local processes;
   wall time [s], rotor revolutions marched, revolutions per second;
@@ -23,8 +24,9 @@ import time
 
 from aircraft import identify_inflow
 from aircraft.configs import coaxial_compound
-from aircraft.identification import Coaxial6State, Coaxial12State, IdentificationSettings
+from aircraft.identification import Coaxial6State, IdentificationSettings, get_structure
 from aircraft.identification.pipeline import _trim_request
+from aircraft.identification.regenerate import RECIPES
 from aircraft.wake import FlightCondition, SweepSpec, run_sweeps
 
 CT = 0.0053 + 0.0043            # system C_T (the dissertation's split), shared equally
@@ -48,7 +50,7 @@ def main(argv=None):
     parser.add_argument("--cache", default=None, help="wake cache folder (default: a fresh temporary one)")
     args = parser.parse_args(argv)
     config, settings = coaxial_compound(), IdentificationSettings()
-    structure = Coaxial12State()
+    structure = get_structure(RECIPES["coaxial_hover_12state"].structure)   # the shipped one
     specs = data_set_specs(structure, settings)
     with tempfile.TemporaryDirectory() as tmp:
         cache = args.cache or tmp
@@ -66,7 +68,7 @@ def main(argv=None):
         m6 = identify_inflow(config, None, Coaxial6State(), ct=CT, settings=settings, n_jobs=args.jobs,
                              cache_dir=cache, progress=False)
         t_fit6 = time.perf_counter() - t2
-    print(f"12-state coaxial hover data set: {len(specs)} records, {revs:.0f} rotor revolutions marched "
+    print(f"12-state coaxial hover data set ({structure!r}): {len(specs)} records, {revs:.0f} rotor revolutions marched "
           f"({'cached' if args.cache else 'uncached'}), {args.jobs} processes")
     print(f"  wake data set (trim + runs): {t_data:.0f} s  ({revs / t_data:.2f} rev/s)")
     print(f"  12-state identification from the records (staged fit + reduction + verification): {t_fit12:.0f} s "
