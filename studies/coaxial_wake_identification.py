@@ -128,10 +128,12 @@ def _write_model(model, cost, params, out, suffix):
 
 
 def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", verbose=True, model=None,
-              model12=None, twelve=True, **kwargs):
+              model12=None, twelve=True, diagnostics=True, **kwargs):
     """Identify (unless ``model`` / ``model12``, IdentifiedModels, are given) the 6-state and
     (``twelve``) the 12-state models, write tables and figures; return ``(model6, model12)``
-    (``model12`` None without ``twelve``)."""
+    (``model12`` None without ``twelve``). ``diagnostics``: also fit the 6-state's data in
+    sum/difference coordinates and with a feedthrough
+    (:func:`aircraft.identification.six_state_diagnostics.six_state_diagnostics`, ~2 min)."""
     import matplotlib.pyplot as plt
     t0 = time.perf_counter()
     if model is None:
@@ -146,6 +148,14 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
     for name, key in (("M_azimuth", "M"), ("Lbar", "L"), ("tau_s", "tau")):
         pd.DataFrame(mats[key], index=STRUCTURE.outputs, columns=STRUCTURE.loads).to_csv(out / f"{name}_6state.csv")
     plt.close("all")
+    diag = None
+    if diagnostics:
+        from aircraft.identification.six_state_diagnostics import six_state_diagnostics
+        s = model.settings
+        diag, diag_pairs = six_state_diagnostics(model.responses, model.omega, fit_range=tuple(s.fit_range),
+                                                 n_omega=s.n_omega, coherence_min=s.coherence_min)
+        diag.to_csv(out / "six_state_diagnostics.csv", index=False)
+        diag_pairs.to_csv(out / "six_state_diagnostics_pairs.csv", index=False)
     if model12 is not None:
         cost12, params12 = tables_12(model12)
         _write_model(model12, cost12, params12, out, "_12state")
@@ -169,6 +179,11 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
               f"{model.trusted}; flat directions: {len(model.fit.flat_directions)}")
         for reason in model.trust_failures():
             print(f"  not trusted: {reason[:300]}")
+        if diag is not None:
+            cols = ["fit", "J_ave_rotor_pairs", "free_parameters", "max_CR_M_L_pct", "n_CR_over_20_pct",
+                    "n_flat_directions", "m11", "l11", "m22", "l22", "collective_poles_complex"]
+            print("6-state diagnostics (same data and start; J on the 12 rotor pairs):")
+            print(diag[cols].to_string(index=False, float_format=fmt))
         if model12 is not None:
             print(model12.staged.log.to_string(index=False, float_format=fmt) if model12.staged is not None else "")
             print(cost12.to_string(index=False, float_format=fmt))
@@ -191,10 +206,13 @@ def main(argv=None):
     parser.add_argument("--sweep-s", type=float, default=45.0, help="sweep record length [s]")
     parser.add_argument("--out", default="results/coaxial_wake_identification")
     parser.add_argument("--no-12state", action="store_true", help="the 6-state model only")
+    parser.add_argument("--no-diagnostics", action="store_true",
+                        help="skip the 6-state's sum/difference and feedthrough fits")
     args = parser.parse_args(argv)
     settings = (WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
                 if args.coarse else WakeSettings())
-    run_study(settings, sweep_s=args.sweep_s, out_dir=args.out, twelve=not args.no_12state)
+    run_study(settings, sweep_s=args.sweep_s, out_dir=args.out, twelve=not args.no_12state,
+              diagnostics=not args.no_diagnostics)
 
 
 if __name__ == "__main__":

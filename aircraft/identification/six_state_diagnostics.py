@@ -1,0 +1,195 @@
+"""Why the Eq. 5.3 6-state cannot be trusted on our wake: coordinates and a feedthrough.
+
+The 6-state fitted to our coaxial hover wake (J_ave ~108) has Cramer-Rao bounds
+of 37-64 % on every apparent mass and gain, a collective M of 6-11 where
+Pitt-Peters and Eq. 5.3 give ~0.85, and a collective inflow mode that is a
+complex pair. :func:`six_state_diagnostics` puts numbers on two explanations,
+each with the same data, structure ties and start:
+
+1. **Coordinates.** The collective lambda/C_T block is nearly rank one in the
+   data (sigma_min/sigma_max ~ 0.06), so the element-wise cost cannot see its
+   small singular direction. Fitting the same structure to the rotors' sum and
+   difference responses (:func:`flightid.transformed.sum_difference_transform`;
+   orthonormal, so no data are added or counted twice) makes that direction an
+   element of its own.
+2. **A quasi-static part.** The same structure with a direct feedthrough ``D``
+   per element (:class:`Coaxial6StateFeedthrough`, ties as Eq. 5.3's): if the
+   data want an instantaneous share of the inflow, Eq. 5.3 can only emulate it
+   with a near-singular M, which is a flat valley.
+
+The rows report the cost on the rotors' own 12 lambda/C pairs (the pairs of
+Table 5.1) whatever coordinates the fit used, so that they compare. Note that
+the Cramer-Rao bound of the CIFER convention is a curvature of *the cost*, not
+a calibrated standard deviation: an orthonormal change of coordinates of the
+same data changes it (``tests/test_flightid_transformed.py`` shows a factor
+~1.8 on synthetic data at an unchanged true error). A bound below 20 % in one
+set of coordinates is therefore not, alone, a trusted model.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .structures import Coaxial6State, _COAX6_FREE
+
+__all__ = ["Coaxial6StateFeedthrough", "coaxial_sum_difference", "six_state_diagnostics"]
+
+_GROUPS = ((("lam0_U", "lam0_L"), ("CT_U", "CT_L"), "lam0"),
+           (("lam1s_U", "lam1s_L"), ("CL_U", "CL_L"), "lam1s"),
+           (("lam1c_U", "lam1c_L"), ("CM_U", "CM_L"), "lam1c"))
+
+
+class Coaxial6StateFeedthrough(Coaxial6State):
+    """Eq. 5.3's 6-state plus a direct feedthrough ``D`` with the same pattern and ties.
+
+    ``lambda = (M s + Lbar)^-1 C + D C`` (delays on both parts): 8 more parameters
+    ``d11 ... d55`` [inflow per load coefficient]. Not a printed structure: a
+    diagnostic of what Eq. 5.3 lacks on our wake (module docstring).
+    """
+
+    key = "coaxial_6state_feedthrough"
+
+    def build(self, initial, omega, fixed=()):
+        from flightid.feedthrough import MLTauFeedthroughStructure
+        sign = "-" if self.frame == "rotor" else ""
+
+        def pattern(p, s):
+            return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
+                    [0, f"{p}22", 0, 0, f"{p}25", 0],
+                    [0, 0, f"{p}22", 0, 0, f"{s}{p}25"],
+                    [f"{p}41", 0, 0, f"{p}44", 0, 0],
+                    [0, f"{p}52", 0, 0, f"{p}55", 0],
+                    [0, 0, f"{s}{p}52", 0, 0, f"{p}55"]]
+        return MLTauFeedthroughStructure(pattern("m", sign), pattern("l", sign), pattern("t", ""),
+                                         pattern("d", sign), inputs=self.inputs, outputs=self.outputs,
+                                         initial=dict(initial), fixed=fixed, omega=omega)
+
+    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
+        """Eq. 5.3's start (:meth:`Coaxial6State.initial_values`) with ``D = 0``."""
+        init = super().initial_values(lam_over_c, n_points, coherence_min)
+        init.update({f"d{i}{j}": 0.0 for i, j in _COAX6_FREE})
+        return init
+
+
+def coaxial_sum_difference(responses, structure=None, w_ref=1.0):
+    """Sum and difference coordinates of a coaxial pair, signs from the data.
+
+    Parameters
+    ----------
+    responses : flightid.MeasuredResponse
+        The rotors' lambda/C.
+    structure : InflowStructure, optional
+        Gives the signal order (default :class:`Coaxial6State`).
+    w_ref : float
+        The sign of each harmonic's sum is that of the cross-rotor response
+        relative to the own-rotor one over the three points from ``w_ref`` [rad/s]
+        (in our mirrored frames the lateral pair sums with -1).
+
+    Returns
+    -------
+    T, Sinv, outputs, inputs, signs
+        For :func:`flightid.transformed.transform_response` and
+        :class:`flightid.transformed.TransformedStructure`.
+    """
+    from flightid.transformed import sum_difference_transform
+    structure = structure or Coaxial6State()
+    k0 = int(np.searchsorted(responses.omega, w_ref))
+    sl = slice(k0, k0 + 3)
+    signs = []
+    for (oa, ob), (ia, _), _ in _GROUPS:
+        cross = responses.element(ob, ia)[0][sl].mean()
+        own = responses.element(oa, ia)[0][sl].mean()
+        signs.append(1.0 if np.real(cross / own) >= 0 else -1.0)
+    t, s_inv, outs, ins = sum_difference_transform(list(_GROUPS), structure.outputs, structure.inputs, signs)
+    return t, s_inv, outs, ins, signs
+
+
+def _row(label, coordinates, res, inner, responses, rotor_pairs, fit_range, n_omega):
+    from flightid.transformed import pair_costs
+    params = res.parameters[res.parameters.status == "free"]
+    ml = params[params.parameter.str[0].isin(["m", "l"])]
+    rotor = pair_costs(inner, responses, rotor_pairs, fit_range, n_omega)
+    vals = inner.values
+    row = {"fit": label, "coordinates": coordinates, "pairs_fitted": len(res.cost_table),
+           "J_ave_fitted_pairs": float(res.J_ave), "J_ave_rotor_pairs": rotor.attrs["J_ave"],
+           "J_max_rotor_pair": float(rotor.J.max()), "free_parameters": len(params),
+           "max_CR_M_L_pct": float(ml.cramer_rao_pct.max()),
+           "n_CR_over_20_pct": int((params.cramer_rao_pct > 20).sum()),
+           "n_insensitivity_over_10_pct": int((params.insensitivity_pct > 10).sum()),
+           "n_flat_directions": int(len(res.flat_directions)), "condition_number": float(res.condition_number)}
+    row.update({k: float(vals[k]) for k in ("m11", "m14", "m41", "m44", "l11", "l14", "l41", "l44",
+                                            "m22", "l22")})
+    poles = inner.poles()
+    row["collective_poles_complex"] = bool(np.any(np.abs(poles.imag) > 1e-6))
+    row["slowest_pole_1_s"] = float(-np.max(poles.real))
+    return row, rotor.assign(fit=label)
+
+
+def six_state_diagnostics(responses, omega, *, fit_range=(1.0, 25.0), n_omega=20, coherence_min=0.6,
+                          start=None, feedthrough_max_nfev=3000):
+    """Fit Eq. 5.3's 6-state three ways on the same data and say what each reaches.
+
+    Parameters
+    ----------
+    responses : flightid.MeasuredResponse
+        Joint input-output lambda/C of the coaxial in hover (the pipeline's).
+    omega : float
+        Rotor speed [rad/s].
+    fit_range : (float, float)
+        Fit band [rad/s] (the pipeline's).
+    start : dict, optional
+        Start of the Eq. 5.3 fits (default :meth:`Coaxial6State.initial_values`); the
+        feedthrough fit starts from the rotor-frame optimum with ``D = 0``.
+    feedthrough_max_nfev : int
+        Evaluation budget of the feedthrough fit (32 parameters).
+
+    Returns
+    -------
+    summary : pandas.DataFrame
+        One row per fit: rotor frame, sum/difference coordinates, rotor frame with
+        feedthrough; the cost on the 12 rotor pairs, the bounds, flat directions,
+        condition number and the collective M and Lbar.
+    pair_costs : pandas.DataFrame
+        Every fit's cost per rotor pair.
+    """
+    from flightid import fit
+    from flightid.transformed import TransformedStructure, transform_response
+    st = Coaxial6State()
+    start = dict(start or st.initial_values(responses, 3))
+    kw = dict(frequency_ranges=tuple(fit_range), n_omega=n_omega, coherence_min=coherence_min)
+    rotor_pairs = [(o, u) for o in st.outputs for u in st.inputs
+                   if o.split("_")[0] == {"CT": "lam0", "CL": "lam1s", "CM": "lam1c"}[u.split("_")[0]]]
+    rows, costs = [], []
+
+    plain = fit(st.build(start, omega), responses, pairs=rotor_pairs, **kw)
+    r, c = _row("Eq. 5.3, rotor frame", "rotor", plain, plain.structure, responses, rotor_pairs, fit_range,
+                n_omega)
+    rows.append(r)
+    costs.append(c)
+
+    t, s_inv, outs, ins, signs = coaxial_sum_difference(responses, st)
+    transformed = transform_response(responses, t, s_inv, outs, ins)
+    sd_pairs = [(f"{g}_{a}", f"{g}_{b}") for g in ("lam0", "lam1s", "lam1c") for a in ("sum", "diff")
+                for b in ("sum", "diff")]
+    sd = fit(TransformedStructure(st.build(start, omega), t, s_inv, outs, ins), transformed, pairs=sd_pairs, **kw)
+    r, c = _row("Eq. 5.3, sum/difference", f"sum/difference (signs {signs})", sd, sd.structure.inner,
+                responses, rotor_pairs, fit_range, n_omega)
+    rows.append(r)
+    costs.append(c)
+
+    ft = Coaxial6StateFeedthrough()
+    # from the rotor-frame optimum with D = 0: the feedthrough fit then starts where
+    # Eq. 5.3 stopped and can only lower its cost (from the data-driven start it
+    # stopped at a worse optimum with a near-integrator, J_ave 230)
+    init = ft.initial_values(responses, 3)
+    init.update(plain.structure.values)
+    # delays start inside their bound (a delay at 0 has no gradient into negative values)
+    init.update({k: max(v, 0.01) for k, v in init.items() if k.startswith("t")})
+    fed = fit(ft.build(init, omega), responses, pairs=rotor_pairs, max_nfev=feedthrough_max_nfev, **kw)
+    r, c = _row("Eq. 5.3 + feedthrough D, rotor frame", "rotor", fed, fed.structure, responses, rotor_pairs,
+                fit_range, n_omega)
+    d = fed.structure.matrices()["D"]
+    r["max_abs_D"] = float(np.abs(d).max())
+    rows.append(r)
+    costs.append(c)
+    return pd.DataFrame(rows), pd.concat(costs, ignore_index=True)
