@@ -39,6 +39,14 @@ _GROUPS = ((("lam0_U", "lam0_L"), ("CT_U", "CT_L"), "lam0"),
            (("lam1c_U", "lam1c_L"), ("CM_U", "CM_L"), "lam1c"))
 
 
+def _entries(pattern, prefix=None):
+    """A flightid pattern back as entries (names with their sign), renamed to ``prefix``."""
+    out = pattern.const.astype(object)
+    for i, j, name, sign in pattern.refs:
+        out[i, j] = ("-" if sign < 0 else "") + (prefix + name[1:] if prefix else name)
+    return out.tolist()
+
+
 class Coaxial6StateFeedthrough(Coaxial6State):
     """Eq. 5.3's 6-state plus a direct feedthrough ``D`` with the same pattern and ties.
 
@@ -51,18 +59,11 @@ class Coaxial6StateFeedthrough(Coaxial6State):
 
     def build(self, initial, omega, fixed=()):
         from flightid.feedthrough import MLTauFeedthroughStructure
-        sign = "-" if self.frame == "rotor" else ""
-
-        def pattern(p, s):
-            return [[f"{p}11", 0, 0, f"{p}14", 0, 0],
-                    [0, f"{p}22", 0, 0, f"{p}25", 0],
-                    [0, 0, f"{p}22", 0, 0, f"{s}{p}25"],
-                    [f"{p}41", 0, 0, f"{p}44", 0, 0],
-                    [0, f"{p}52", 0, 0, f"{p}55", 0],
-                    [0, 0, f"{s}{p}52", 0, 0, f"{p}55"]]
-        return MLTauFeedthroughStructure(pattern("m", sign), pattern("l", sign), pattern("t", ""),
-                                         pattern("d", sign), inputs=self.inputs, outputs=self.outputs,
-                                         initial=dict(initial), fixed=fixed, omega=omega)
+        # Eq. 5.3's own patterns (ties and frame signs included), D tied as M is
+        base = super().build({k: v for k, v in initial.items() if not k.startswith("d")}, omega)
+        m, lb, tau = (_entries(base._patterns[k]) for k in ("M", "L", "tau"))
+        return MLTauFeedthroughStructure(m, lb, tau, _entries(base._patterns["M"], "d"), inputs=self.inputs,
+                                         outputs=self.outputs, initial=dict(initial), fixed=fixed, omega=omega)
 
     def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
         """Eq. 5.3's start (:meth:`Coaxial6State.initial_values`) with ``D = 0``."""
