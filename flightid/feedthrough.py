@@ -26,9 +26,12 @@ class MLTauFeedthroughStructure(MLTauStructure):
     D : pattern matrix (n_outputs x n_inputs)
         Direct gains [output units per input unit]; names are parameters, shared
         names are ties, ``-name`` a tie of opposite sign.
-    inputs, outputs, initial, fixed, C, omega, states
+    inputs, outputs, initial, fixed, C, states
         As in :class:`flightid.MLTauStructure` (``initial`` includes ``D``'s
         parameters).
+    omega : float, optional
+        Rotor speed [rad/s]: if given, ``x'`` is d/dpsi (azimuth time), as in
+        :class:`flightid.MLTauStructure`.
     """
 
     def __init__(self, M, L, tau=None, D=None, *, inputs, outputs, initial, fixed=(), C=None, omega=None,

@@ -83,6 +83,9 @@ def transform_response(response, T, Sinv, outputs, inputs, name=None) -> Measure
         Input transform: original input ``u = Sinv u_t`` (so ``y = (H Sinv) u_t``).
     outputs, inputs : list of str
         Names of the transformed outputs and inputs.
+    name : str, optional
+        Name of the result (default: the response's name plus ``" (transformed)"``,
+        or none if the response has none).
 
     Returns
     -------
@@ -102,8 +105,9 @@ def transform_response(response, T, Sinv, outputs, inputs, name=None) -> Measure
         eps2 = np.where(g > 0, (1.0 - g) / np.where(g > 0, g, 1.0) * np.abs(h) ** 2, np.inf)
         var = np.einsum("ai,ijw,jb->abw", t ** 2, eps2, s_inv ** 2)
         gt = np.where(np.isfinite(var), 1.0 / (1.0 + var / np.maximum(np.abs(ht) ** 2, 1e-300)), 0.0)
-    return MeasuredResponse(ht, response.omega, np.clip(gt, 0.0, 1.0), inputs, outputs,
-                            name=name or f"{response.name} (transformed)" if response.name else name)
+    if name is None and response.name:
+        name = f"{response.name} (transformed)"
+    return MeasuredResponse(ht, response.omega, np.clip(gt, 0.0, 1.0), inputs, outputs, name=name)
 
 
 def sum_difference_transform(groups, outputs, inputs, signs=None):

@@ -53,6 +53,12 @@ class Coaxial6StateFeedthrough(Coaxial6State):
     ``lambda = (M s + Lbar)^-1 C + D C`` (delays on both parts): 8 more parameters
     ``d11 ... d55`` [inflow per load coefficient]. Not a printed structure: a
     diagnostic of what Eq. 5.3 lacks on our wake (module docstring).
+
+    Parameters
+    ----------
+    frame : {"rotor", "printed"}
+        As in :class:`Coaxial6State`: our per-rotor frames (default) or the
+        dissertation's common frame; ``D`` takes the frame's signs from ``M``.
     """
 
     key = "coaxial_6state_feedthrough"
@@ -138,6 +144,10 @@ def six_state_diagnostics(responses, omega, *, fit_range=(1.0, 25.0), n_omega=20
         Rotor speed [rad/s].
     fit_range : (float, float)
         Fit band [rad/s] (the pipeline's).
+    n_omega : int
+        Log-spaced frequency points per response in the cost (CIFER uses 20).
+    coherence_min : float
+        Coherence threshold for the fit's default pairs and ranges (:func:`flightid.fit`).
     start : dict, optional
         Start of the Eq. 5.3 fits (default :meth:`Coaxial6State.initial_values`); the
         feedthrough fit starts from the rotor-frame optimum with ``D = 0``.
