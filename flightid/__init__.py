@@ -14,6 +14,8 @@ a flight-test record or a wind-tunnel record.
               │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
               ▼
     MLTauStructure / FGCStructure / GainDelayStructure  (free / fixed / tied parameters)
+    MLTauFeedthroughStructure (+ direct D);  TransformedStructure (fit in other
+              coordinates, e.g. sum/difference, with transform_response)
               │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability, multi-start;
               │       DegeneracyReport: flat directions, square-block singular values)
               │ fit_staged (plan of Stage s, §6.4.3)
@@ -34,6 +36,8 @@ from .degeneracy import DegeneracyReport, MultiStartReport, NoInformationError
 from .reduction import ReductionResult, reduce
 from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
+from .feedthrough import MLTauFeedthroughStructure
+from .transformed import TransformedStructure, pair_costs, sum_difference_transform, transform_response
 
 __all__ = [
     "DataError", "IdentificationError", "InputValueError", "SignalNameError",
@@ -49,4 +53,6 @@ __all__ = [
     "ReductionResult", "reduce",
     "Stage", "StagedFitResult", "fit_staged",
     "VerificationResult", "theil_inequality", "verify",
+    "MLTauFeedthroughStructure", "TransformedStructure", "pair_costs", "sum_difference_transform",
+    "transform_response",
 ]

@@ -4,7 +4,7 @@ Holds 0.02 rad steps of theta0 and theta1s of each rotor for 10 s in the default
 coaxial hover wake (the shipped models' resolution and trim) and compares the
 inflow change averaged over 6-10 s with what each model's DC gain predicts from
 the same record's load changes (:func:`aircraft.identification.quasi_steady_check`).
-The shipped 6- and 12-state models are ours; the printed Eq. 5.3 model is a
+The shipped 6-state, 12-state and axisymmetric 6-state models are ours; the printed Eq. 5.3 model is a
 reference row (another rotor's model, in our frames).
 
 Writes ``results/coaxial_quasi_steady/``: ``table.csv`` (every step x output,
@@ -15,7 +15,7 @@ change and ``inflow_model`` names the model.
 
 Run: ``rotorwake coaxial-quasi-steady`` (``--small``: tiny wake, 4 s holds, for the tests;
 ``--no-cache``: the wake records are computed afresh in a temporary cache shared by the
-three models, so the first model's wall time is the cost of the records; the committed
+models, so the first model's wall time is the cost of the records; the committed
 results are run so).
 """
 from __future__ import annotations
@@ -36,6 +36,7 @@ from aircraft.inflow import IdentifiedInflow
 from aircraft.wake import WakeSettings
 
 MODELS = (("ours, 6-state", "coaxial_hover_6state"), ("ours, 12-state", "coaxial_hover_12state"),
+          ("ours, axisymmetric 6-state", "coaxial_hover_6state_axisymmetric"),
           ("published Eq. 5.3 (reference)", "published_eq5_3"))
 
 

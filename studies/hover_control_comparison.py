@@ -8,19 +8,21 @@ sensor in every case:
   the wake-identified inflow model;
 * (C) design optimised on the wake-identified aircraft, applied to it;
 * (D) one robust design (CONDUIT multi-case) meeting every spec on the
-  Dynamic-Climb and the wake-identified aircraft at once, started from the case C
-  (then A) design and keeping its inverse plant and tau_eq. Add a plant to
-  ``robust_plants`` in :func:`main` to add it to case D.
+  Dynamic-Climb aircraft and each of our wake-identified aircraft that has a
+  feasible design of its own (case C), started from those case C (then A) designs
+  and keeping the first one's inverse plant and tau_eq.
 
 The wake-identified inflow of cases B and C is, by default, **our 12-state
 near/far-wake model with flap-rate inputs** (Eqs. 6.2-6.3 structure, as the
 dissertation's §7.5 flew), identified from our own free-vortex wake and shipped as
 ``aircraft/data/models/coaxial_hover_12state.json``. Further rows fly our 6-state
-model (``coaxial_hover_6state``) and the dissertation's printed Eq. 5.3 model
+model (``coaxial_hover_6state``), our 6-state with every coupling hover's
+axisymmetry allows and the collective apparent masses held at Pitt-Peters'
+(``coaxial_hover_6state_axisymmetric``) and the dissertation's printed Eq. 5.3 model
 (converted to our rotor frames by :func:`aircraft.inflow.published.in_rotor_frames`)
 the same way: (B) the DC design on that aircraft, (C) a design optimised on it.
 ``--identified published`` puts Eq. 5.3 in cases B/C instead (the former default);
-``--regenerate`` rebuilds both shipped models from the free wake first (about 40
+``--regenerate`` rebuilds our three shipped models from the free wake first (about 40
 minutes on 2 cores uncached; progress shown, wake runs cached).
 
 Each aircraft is our coaxial model (:mod:`aircraft.helicopter`) trimmed in hover
@@ -30,6 +32,10 @@ p/delta_lat | q->delta_lon, r->delta_ped, w->delta_col (Eq. 7.21), built by
 tie), bounded below by 0; the DMO raises its boundaries by bisection to 0.5 %.
 Stage 1 also runs the identification pipeline end to end on an embedded truth
 (:mod:`studies.identification_demo`).
+
+The effective roll damping and control power of every aircraft against frequency
+(``roll_derivatives.csv``/``.png``) show where the identified inflow models act
+outside the band they were fitted on.
 
 Writes tables (CSV) and figures (PNG) under ``results/hover_control_comparison/``
 and prints Tables 7.4/7.5-style summaries with the dissertation's values in
@@ -47,7 +53,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from aircraft import coaxial_compound
-from aircraft.helicopter import Helicopter, HelicopterSettings, flap_mode_damping, linearize, modes, trim
+from aircraft.helicopter import (Helicopter, HelicopterSettings, effective_derivative, flap_mode_damping,
+                                 linearize, modes, trim)
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
 from controllers import (CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo,
@@ -107,6 +114,41 @@ def _mark_margins(ax_mag, ax_ph, w, mag, phase, color, loop):
         ax_mag.vlines(w180, m180, 0.0, color=color, lw=2.5, alpha=0.6)
         ax_mag.annotate(f"GM {gm:.1f} dB", (w180, 0.5 * m180), fontsize=7, color=color,
                         xytext=(4, 0), textcoords="offset points")
+
+
+DERIVATIVE_OMEGA = np.r_[0.0, np.geomspace(0.05, 20.0, 41)]   # rad/s; 1.0 is on the grid
+
+
+def roll_derivatives(systems, omega=DERIVATIVE_OMEGA):
+    """Effective roll damping L_p and control power L_delta_lat of each linear aircraft
+    over ``omega`` [rad/s] (:func:`aircraft.helicopter.effective_derivative`), long form."""
+    rows = []
+    for name, sys in systems.items():
+        lp = effective_derivative(sys, "p", "p", omega)
+        ld = effective_derivative(sys, "p", "delta_lat", omega)
+        rows += [{"aircraft": name, "omega_rad_s": w, "Lp_real_1_s": a.real, "Lp_imag_1_s": a.imag,
+                  "Ldelta_real": b.real, "Ldelta_imag": b.imag} for w, a, b in zip(omega, lp, ld)]
+    return pd.DataFrame(rows)
+
+
+def derivative_figure(derivs, fit_band=(1.0, 25.0)):
+    """Re L_p and |L_delta_lat| against frequency, the identified models' fit band shaded."""
+    fig = Figure(figsize=(10, 4), constrained_layout=True)
+    ax_p, ax_d = fig.subplots(1, 2)
+    for name, d in derivs[derivs.omega_rad_s > 0].groupby("aircraft", sort=False):
+        ax_p.semilogx(d.omega_rad_s, d.Lp_real_1_s, label=name)
+        ax_d.semilogx(d.omega_rad_s, np.hypot(d.Ldelta_real, d.Ldelta_imag), label=name)
+    for ax in (ax_p, ax_d):
+        ax.axvspan(*fit_band, color="0.9", zorder=0)
+        ax.set_xlabel("frequency [rad/s] (shaded: identified models' fit band)")
+        ax.grid(True, which="both", alpha=0.3)
+    ax_p.axhline(0.0, color="k", lw=0.8)
+    ax_p.set_ylabel("Re L_p [1/s] (negative: damped)")
+    ax_d.set_ylabel("|L_delta_lat| [rad/s^2 per stick unit]")
+    ax_p.legend(fontsize=8)
+    ax_p.set_title("effective roll damping, body rate held at exp(j omega t)")
+    ax_d.set_title("effective roll control power")
+    return fig
 
 
 def figures(cases, out):
@@ -190,7 +232,7 @@ def main(argv=None):
                              "(shipped file aircraft/data/models/coaxial_hover_12state.json; default), or the "
                              "dissertation's Eq. 5.3 6-state model converted to our rotor frames")
     parser.add_argument("--regenerate", action="store_true",
-                        help="rebuild our shipped 6- and 12-state models from the free wake first "
+                        help="rebuild our three shipped 6- and 12-state models from the free wake first "
                              "(progress shown, wake runs cached; ~40 min on 2 cores uncached)")
     args = parser.parse_args(argv)
     t_start = time.perf_counter()
@@ -201,7 +243,7 @@ def main(argv=None):
         print(f"[stage 1] done: J_ave = {cost.J.mean():.2f} over {len(cost)} responses\n")
     if args.regenerate:
         from aircraft.identification import regenerate
-        for name in ("coaxial_hover_6state", "coaxial_hover_12state"):
+        for name in ("coaxial_hover_6state", "coaxial_hover_6state_axisymmetric", "coaxial_hover_12state"):
             print(f"[regenerate] {name} from the free wake")
             regenerate(name, progress=True)
 
@@ -215,8 +257,10 @@ def main(argv=None):
     if args.identified == "ours":
         from aircraft.identification import load_record
         inflows = {"ID": IdentifiedInflow.from_file("coaxial_hover_12state"),
-                   "ID6": IdentifiedInflow.from_file("coaxial_hover_6state"), "Eq. 5.3": published6}
-        for key, name in (("ID", "coaxial_hover_12state"), ("ID6", "coaxial_hover_6state")):
+                   "ID6": IdentifiedInflow.from_file("coaxial_hover_6state"),
+                   "IDA": IdentifiedInflow.from_file("coaxial_hover_6state_axisymmetric"), "Eq. 5.3": published6}
+        for key, name in (("ID", "coaxial_hover_12state"), ("ID6", "coaxial_hover_6state"),
+                          ("IDA", "coaxial_hover_6state_axisymmetric")):
             rec = load_record(name)
             trusted = rec.parameters[rec.parameters.status == "free"]
             trusted = bool((trusted.cramer_rao_pct < 20).all() and (trusted.insensitivity_pct < 10).all())
@@ -225,7 +269,7 @@ def main(argv=None):
     else:
         inflows = {"ID": published6}
     labels = {"ID": "our 12-state" if args.identified == "ours" else "Eq. 5.3", "ID6": "our 6-state",
-              "Eq. 5.3": "Eq. 5.3 (printed)"}
+              "IDA": "our axisymmetric 6-state", "Eq. 5.3": "Eq. 5.3 (printed)"}
     print("[stage 2] trim + linearise the coaxial in hover with each inflow model")
     plant_dc, sys_dc, tr_dc = roll_plant(DynamicClimb(), settings)
     plants, systems = {"DC": plant_dc}, {"DC": sys_dc}
@@ -236,6 +280,14 @@ def main(argv=None):
               f"C_T U/L = {tr.loads['CT_U']:.5f}/{tr.loads['CT_L']:.5f}")
     pd.concat([modes(systems[k]).assign(aircraft=("Dynamic Climb" if k == "DC" else labels[k])) for k in systems]) \
         .to_csv(out / "aircraft_modes.csv", index=False)
+    # where each inflow model changes the roll damping and control power: the
+    # identified models are fitted on 1-25 rad/s, and what they do below is extrapolation
+    derivs = roll_derivatives({("Dynamic Climb" if k == "DC" else labels[k]): systems[k] for k in systems})
+    derivs.to_csv(out / "roll_derivatives.csv", index=False)
+    derivative_figure(derivs).savefig(out / "roll_derivatives.png", dpi=80)
+    print(derivs[derivs.omega_rad_s.isin([0.0, 1.0])].pivot(index="aircraft", columns="omega_rad_s",
+                                                              values="Lp_real_1_s")
+          .rename(columns=lambda w: f"Re L_p at {w:g} rad/s [1/s]").to_string(float_format="%.2f"))
 
     actuator = second_order_actuator(35.0, 0.7)
     command = CommandModel(frequency=4.0, damping=0.7, gain=0.05)
@@ -257,16 +309,28 @@ def main(argv=None):
     # an infeasible case is a result, not a crash: it is reported (infeasible.txt) and
     # the other rows are still flown
     res_c = results["ID"]
-    # case D: one gain set for every plant in this list (one line adds a plant); the
-    # feed-forward (inverse plant, tau_eq) is case C's, as one controller would fly
-    robust_plants = {"DC": plant_dc, labels["ID"]: plants["ID"]}
-    print(f"[stage 3] DMO, case (D): robust design on {', '.join(robust_plants)}")
+    # case D: one gain set for the DC aircraft and every identified aircraft of ours
+    # that has a design of its own (case C feasible): where not even a design for that
+    # aircraft alone meets every spec, no robust one can. The printed Eq. 5.3 is a
+    # comparison row, not one of ours. The feed-forward (inverse plant, tau_eq) is the
+    # first such case C's, as one controller would fly.
+    ours = [k for k in inflows if k != "Eq. 5.3"]
+    robust_keys = [k for k in ours if results[k] is not None]
+    skipped = [labels[k] for k in ours if results[k] is None]
+    robust_plants = {"DC": plant_dc, **{labels[k]: plants[k] for k in robust_keys}}
+    robust_key_of = {"DC": "DC", **{labels[k]: k for k in robust_keys}}
+    res_d, d_failures = None, []
+    if skipped:
+        print(f"  case (D) leaves out {', '.join(skipped)}: no design for that aircraft alone meets every spec")
+        d_failures.append(f"left out of case (D) (case C infeasible on them): {', '.join(skipped)}")
+    if robust_keys:
+        print(f"[stage 3] DMO, case (D): robust design on {', '.join(robust_plants)}")
     # start from the optimised single-plant designs (their gains and feed-forward):
     # a robust design, if one exists, lies nearer those than the generic start
-    res_d, d_failures = None, []
-    starts = ([("case C design", res_c.design)] if res_c is not None else []) + [
+    starts = [(f"case C design on {labels[k]}", results[k].design) for k in robust_keys] + [
         ("case A design", res_a.design),
-        ("starting gains", EMFDesign(plants["ID"], start, command, actuator, sensor_delay=0.01))]
+        ("starting gains", EMFDesign(plants[robust_keys[0]], start, command, actuator, sensor_delay=0.01))
+    ] if robust_keys else []
     for label, start_design in starts:
         try:
             res_d = dmo([start_design.with_plant(p) for p in robust_plants.values()], progress=True,
@@ -287,7 +351,7 @@ def main(argv=None):
                  (f"(B) DC on {labels['ID']}", res_a.design.with_plant(plants["ID"]), "ID", 1)]
     if res_c is not None:
         rows_spec.append((f"(C) {labels['ID']} on {labels['ID']}", res_c.design, "ID", 2))
-    for key in ("ID6", "Eq. 5.3"):
+    for key in ("ID6", "IDA", "Eq. 5.3"):
         if key in inflows:
             rows_spec.append((f"(B) DC on {labels[key]}", res_a.design.with_plant(plants[key]), key, None))
             if results[key] is not None:
@@ -300,7 +364,7 @@ def main(argv=None):
     robust = ({f"(D) robust on {name}": d for name, d in zip(robust_plants, res_d.designs)}
               if res_d is not None else {})
     for name, key in zip(robust, robust_plants):
-        bare_of[name] = "DC" if key == "DC" else "ID"
+        bare_of[name] = robust_key_of[key]
         column[name] = None
 
     def final_specs(res):
@@ -309,7 +373,7 @@ def main(argv=None):
 
     specs_by_key = {"A": final_specs(res_a), **{k: final_specs(r) for k, r in results.items()
                                                  if k != "A" and r is not None}}
-    specs_d = final_specs(res_d) if res_d is not None else specs_by_key.get("ID", specs_by_key["A"])
+    specs_d = final_specs(res_d) if res_d is not None else specs_by_key["A"]
     spec_set = lambda name: specs_d if name.startswith("(D)") else specs_by_key[specs_of[name]]  # noqa: E731
 
     def gains(design):
@@ -318,7 +382,7 @@ def main(argv=None):
     t74 = pd.DataFrame({"parameter": ["K_p", "K_phi", "K_Iphi", "tau_eq"],
                         "ours (A)&(B)": gains(res_a.design),
                         f"ours (C) {labels['ID']}": gains(res_c.design) if res_c is not None else [np.nan] * 4,
-                        **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID6", "Eq. 5.3")
+                        **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID6", "IDA", "Eq. 5.3")
                            if k in results and results[k] is not None},
                         "ours (D) robust": gains(res_d.design) if res_d is not None else [np.nan] * 4,
                         "dissertation (A)&(B)": [DISSERTATION_74[k][0] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")],
@@ -388,16 +452,15 @@ def main(argv=None):
               f"{wc[name_c] / wc[name_a]:.2f} (dissertation, its 12-state: {ratio_ref:.2f})")
     if res_c is None:
         print(f"case (C) on the {labels['ID']} aircraft: no feasible design (see infeasible.txt)")
-        name_c = c_rows[0] if c_rows else name_a
-    else:
-        name_c = next(n for n in c_rows if n.endswith(f"on {labels['ID']}"))
     if failures:
         (out / "infeasible.txt").write_text("\n".join(failures) + "\n")
     else:
         (out / "infeasible.txt").unlink(missing_ok=True)
     if res_d is not None:
-        print(f"robustness cost, (D) over all plants vs (C): crossover {res_d.crossover:.3f} vs {wc[name_c]:.3f} rad/s "
-              f"({res_d.crossover / wc[name_c] - 1:+.1%})")
+        for k in robust_keys:
+            wc_c = wc[f"(C) {labels[k]} on {labels[k]}"]
+            print(f"robustness cost, (D) over {', '.join(robust_plants)} vs (C) on {labels[k]}: crossover "
+                  f"{res_d.crossover:.3f} vs {wc_c:.3f} rad/s ({res_d.crossover / wc_c - 1:+.1%})")
     else:
         print("robustness: no robust design (D) over " + ", ".join(robust_plants) + " at the starting boundaries")
     print(f"tables and figures in {out}/  (wall {time.perf_counter() - t_start:.0f} s)")

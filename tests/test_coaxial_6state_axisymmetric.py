@@ -168,3 +168,63 @@ def test_six_state_diagnostics_fits_the_axisymmetric_rows_on_their_own_data():
         assert best[k] == pytest.approx(TRUTH[k], rel=0.02), k
     off = pairs[(pairs.fit == best.fit) & pairs.output.str.startswith("lam1s") & pairs.input.str.startswith("CM")]
     assert len(off) == 4
+
+
+# --- a priori values (the shipped coaxial_hover_6state_axisymmetric holds m11, m44) -------------
+
+def _pp_truth():
+    from aircraft.identification.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
+    return {**TRUTH, **PITT_PETERS_COLLECTIVE_MASS}
+
+
+def test_a_priori_values_are_held_through_starts_and_fit():
+    from aircraft.identification import IdentificationSettings
+    from aircraft.identification.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
+    from aircraft.identification.pipeline import _start_candidates
+    truth = _pp_truth()
+    _, data = _exact_data(truth)
+    st = Coaxial6StateAxisymmetric(a_priori=PITT_PETERS_COLLECTIVE_MASS)
+    candidates = _start_candidates(st, data, IdentificationSettings(), OMEGA)
+    fits = [fit(st.build(init, OMEGA), data, frequency_ranges=(1.0, 25.0), n_omega=20) for _, init in candidates]
+    best = min(fits, key=lambda r: r.J_ave)
+    assert best.J_ave < 1.0
+    p = best.parameters.set_index("parameter")
+    for name, value in PITT_PETERS_COLLECTIVE_MASS.items():
+        assert p.loc[name, "status"] == "fixed"
+        assert best.structure.values[name] == value          # held exactly, not refitted
+    for name, value in truth.items():
+        # 2 %: the fit's tolerance on exact data (test_pipeline_starts_recover_exact_data)
+        assert best.structure.values[name] == pytest.approx(value, rel=0.02, abs=2e-4), name
+
+
+def test_a_wrong_a_priori_value_costs_what_the_data_say():
+    # the truth's m11 is 0.85; held 30 % low the other parameters cannot absorb it on
+    # exact data of a well-conditioned model, so the held value is really imposed
+    _, data = _exact_data()
+    st = Coaxial6StateAxisymmetric(a_priori={"m11": 0.6})
+    r = fit(st.build(TRUTH, OMEGA), data, frequency_ranges=(1.0, 25.0), n_omega=20)
+    assert r.structure.values["m11"] == 0.6
+    assert r.J_ave > 1.0
+
+
+def test_a_priori_enters_the_spec_and_the_registry():
+    from aircraft.identification import STRUCTURES, get_structure
+    from aircraft.identification.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
+    plain = Coaxial6StateAxisymmetric()
+    assert "a_priori" not in plain.spec()      # the plain structure's settings hash is unchanged
+    held = get_structure("coaxial_6state_axisymmetric_pp_collective_mass")
+    assert held.a_priori == pytest.approx(PITT_PETERS_COLLECTIVE_MASS)
+    assert held.spec()["a_priori"] == pytest.approx(PITT_PETERS_COLLECTIVE_MASS)
+    assert PITT_PETERS_COLLECTIVE_MASS["m11"] == pytest.approx(8.0 / (3.0 * np.pi))
+    assert "coaxial_6state_axisymmetric" in STRUCTURES
+
+
+@pytest.mark.parametrize("a_priori, error, match", [
+    ({"m99": 1.0}, ValueError, "unknown parameter 'm99'"),
+    ({"m11": float("nan")}, ValueError, "finite real number"),
+    ({"m11": 1j}, ValueError, "finite real number"),
+    ([("m11", 0.85)], TypeError, "must map parameter names"),
+])
+def test_bad_a_priori_values_are_refused(a_priori, error, match):
+    with pytest.raises(error, match=match):
+        Coaxial6StateAxisymmetric(a_priori=a_priori)

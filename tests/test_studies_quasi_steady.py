@@ -22,7 +22,8 @@ def test_quasi_steady_study_compares_each_model_with_the_same_steps(tmp_path):
     for name in ("table.csv", "settling.csv", "load_changes.csv", "steps.png", "wall_times.csv"):
         assert (tmp_path / name).stat().st_size > 0
     table = pd.read_csv(tmp_path / "table.csv")
-    assert set(table.file) == {"coaxial_hover_6state", "coaxial_hover_12state", "published_eq5_3"}
+    assert set(table.file) == {"coaxial_hover_6state", "coaxial_hover_12state", "coaxial_hover_6state_axisymmetric",
+                               "published_eq5_3"}
     # one set of wake records for every model: the wake column is the same for all
     wake = table.pivot_table(index=["control", "output"], columns="file", values="wake")
     assert np.allclose(wake.to_numpy(), wake.to_numpy()[:, :1])

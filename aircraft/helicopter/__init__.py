@@ -5,7 +5,8 @@
     Helicopter(config, inflow) ── trim(condition) ──► TrimResult
                                └─ linearize(trim) ──► control.StateSpace ─► modes(sys)
                                                       ├─ coupling_numerator(sys, "p", "delta_lat", {...})
-                                                      └─ classify_modes(sys) / flap_mode_damping(sys)
+                                                      ├─ classify_modes(sys) / flap_mode_damping(sys)
+                                                      └─ effective_derivative(sys, "p", "p", omega)
     compare_bare_airframe({"Dynamic Climb": DynamicClimb(), ...}) ──► BareAirframeComparison
     ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
 """
@@ -15,6 +16,7 @@ from .trim import TrimCondition, TrimError, TrimInputError, TrimResult, trim
 from .linearize import (LinearizeInputError, NotAtTrimError, NotAtTrimWarning, default_steps,
                         linearize, modes, trim_derivatives)
 from .coupling import CouplingError, coupling_numerator, residualize
+from .derivatives import DerivativeError, effective_derivative
 from .mode_physics import classify_modes, flap_mode_damping, flap_mode_sensitivity, pair_modes
 from .responses import DEFAULT_RESPONSE_PAIRS, BareAirframeComparison, compare_bare_airframe
 from .rotor_stand import RotorStandError, ShaftFixedRotors
@@ -23,6 +25,7 @@ __all__ = ["PILOT_INPUTS", "ROTOR_CONTROLS", "mixing_matrix", "BODY_STATES", "He
            "HelicopterSettings", "TrimCondition", "TrimError", "TrimInputError", "TrimResult", "trim",
            "default_steps", "linearize", "modes", "trim_derivatives", "LinearizeInputError",
            "NotAtTrimError", "NotAtTrimWarning", "CouplingError", "coupling_numerator", "residualize",
+           "DerivativeError", "effective_derivative",
            "classify_modes", "flap_mode_damping", "flap_mode_sensitivity", "pair_modes",
            "DEFAULT_RESPONSE_PAIRS", "BareAirframeComparison", "compare_bare_airframe",
            "RotorStandError", "ShaftFixedRotors"]

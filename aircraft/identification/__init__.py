@@ -26,6 +26,10 @@
     quasi_steady.py  quasi_steady_check: a model's DC gain against held steps of the wake
                    (what a fit on 1-25 rad/s cannot see), QuasiSteadyCheck
     starts.py      equation-error starts of the M/Lbar/tau structures (M from Im(H^-1))
+    axisymmetric.py  Coaxial6StateAxisymmetric: Eq. 5.3 plus the 1s/1c couplings hover's
+                   axisymmetry allows, optional a priori values (PITT_PETERS_COLLECTIVE_MASS)
+    six_state_diagnostics.py  the same 6-state data fitted several ways (coordinates,
+                   feedthrough, a priori masses, axisymmetric terms): why Eq. 5.3 is not trusted
     wake_sensitivity.py  wake_setting_sensitivity: the same sweeps on wakes differing in
                    chosen WakeSettings, tabulated differences (WakeSensitivityResult)
 
@@ -53,6 +57,9 @@ from .design_space import (KEY_PARAMETERS, DesignPoint, DesignSpaceError, Design
 from .quasi_steady import QuasiSteadyCheck, quasi_steady_check
 from .starts import equation_error_masses, equation_error_start
 from .wake_sensitivity import WakeSensitivityResult, wake_setting_sensitivity
+# registers its structures in STRUCTURES on import
+from .axisymmetric import PITT_PETERS_COLLECTIVE_MASS, Coaxial6StateAxisymmetric
+from .six_state_diagnostics import Coaxial6StateFeedthrough, coaxial_sum_difference, six_state_diagnostics
 
 STRUCTURES[SingleRotorForward.key] = SingleRotorForward
 
@@ -75,4 +82,6 @@ __all__ = ["CoaxialForward12State", "IsolatedRotorCheck", "forward_flight_condit
            "KEY_PARAMETERS", "DesignPoint", "DesignSpaceError",
            "DesignSpaceResult", "identify_design_space", "spaced_config",
            "QuasiSteadyCheck", "quasi_steady_check", "TRUST_J_AVE_MAX", "low_frequency_gain", "low_frequency_points",
-           "equation_error_masses", "equation_error_start", "WakeSensitivityResult", "wake_setting_sensitivity"]
+           "equation_error_masses", "equation_error_start", "WakeSensitivityResult", "wake_setting_sensitivity",
+           "PITT_PETERS_COLLECTIVE_MASS", "Coaxial6StateAxisymmetric", "Coaxial6StateFeedthrough",
+           "coaxial_sum_difference", "six_state_diagnostics"]

@@ -33,9 +33,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .structures import Coaxial6State, _low_frequency_inverse
+from .structures import _PP_M11, Coaxial6State, _low_frequency_inverse
 
-__all__ = ["Coaxial6StateAxisymmetric"]
+__all__ = ["Coaxial6StateAxisymmetric", "PITT_PETERS_COLLECTIVE_MASS"]
+
+#: Pitt-Peters' hover apparent mass 8/(3 pi) (azimuth time) on each rotor's own
+#: collective inflow: the a priori value of the scale our nearly rank-one collective
+#: lambda/C block cannot fix (``six_state_diagnostics``, README)
+PITT_PETERS_COLLECTIVE_MASS = {"m11": _PP_M11, "m44": _PP_M11}
 
 
 class Coaxial6StateAxisymmetric(Coaxial6State):
@@ -58,11 +63,20 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
         each offered by :meth:`extra_starts` when stable. Two by default: the delays
         bias the estimate more the higher the band, while our wake's cyclic response
         is first order only above ~4 rad/s, so neither band is right every time.
+    a_priori : mapping of str to float, optional
+        Parameters held at values known before the fit (not identified): every start
+        and fit uses these values and leaves them fixed, and a fitted model reports
+        them with status "fixed". For example :data:`PITT_PETERS_COLLECTIVE_MASS`
+        (registered as ``"coaxial_6state_axisymmetric_pp_collective_mass"``).
     """
 
     key = "coaxial_6state_axisymmetric"
+    #: every parameter of :meth:`build`: M and Lbar entries, then the block delays [s]
+    parameter_names = tuple(f"{p}{ij}" for p in "ml" for ij in ("11", "14", "22", "23", "25", "26",
+                                                                "41", "44", "52", "53", "55", "56")) + tuple(
+        f"t{ij}" for ij in ("11", "14", "22", "25", "41", "44", "52", "55"))
 
-    def __init__(self, frame="rotor", bands=((1.0, 10.0), (4.0, 20.0))):
+    def __init__(self, frame="rotor", bands=((1.0, 10.0), (4.0, 20.0)), a_priori=None):
         super().__init__(frame)
         checked = []
         for band in bands:
@@ -76,14 +90,41 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
         if not checked:
             raise ValueError("bands must hold at least one (low, high) band [rad/s]")
         self.bands = tuple(checked)
+        self.a_priori = self._checked_a_priori(a_priori)
+
+    def _checked_a_priori(self, a_priori):
+        if a_priori is None:
+            return {}
+        if not hasattr(a_priori, "items"):
+            raise TypeError(f"a_priori must map parameter names to values, got {type(a_priori).__name__}")
+        names = set(self.parameter_names)
+        out = {}
+        for name, value in a_priori.items():
+            if name not in names:
+                raise ValueError(f"a_priori names an unknown parameter {name!r}; the parameters are "
+                                 f"{sorted(names)}")
+            if isinstance(value, (bool, complex)) or not np.isscalar(value) or not np.isfinite(value):
+                raise ValueError(f"a_priori value of {name!r} must be a finite real number, got {value!r}")
+            out[name] = float(value)
+        return out
 
     def spec(self):
-        return {**super().spec(), "bands": [list(b) for b in self.bands]}
+        out = {**super().spec(), "bands": [list(b) for b in self.bands]}
+        if self.a_priori:   # only when set: the plain structure's hash is unchanged
+            out["a_priori"] = dict(sorted(self.a_priori.items()))
+        return out
 
     def __repr__(self):
-        return f"{type(self).__name__}(frame={self.frame!r}, bands={self.bands!r})"
+        extra = f", a_priori={self.a_priori!r}" if self.a_priori else ""
+        return f"{type(self).__name__}(frame={self.frame!r}, bands={self.bands!r}{extra})"
 
     def build(self, initial, omega, fixed=()):
+        """The flightid structure from ``initial`` values, the :attr:`a_priori` values
+        overriding them and fixed along with ``fixed``."""
+        values = {**dict(initial), **self.a_priori}
+        return self._build(values, omega, tuple(dict.fromkeys([*fixed, *self.a_priori])))
+
+    def _build(self, initial, omega, fixed):
         from flightid import MLTauStructure
         rotor = self.frame == "rotor"
         cross_b = "" if rotor else "-"     # the cross-rotor b term's second entry
@@ -195,3 +236,6 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
 from .structures import STRUCTURES  # noqa: E402
 
 STRUCTURES[Coaxial6StateAxisymmetric.key] = Coaxial6StateAxisymmetric
+# the structure shipped as coaxial_hover_6state_axisymmetric (the recipe in regenerate)
+STRUCTURES["coaxial_6state_axisymmetric_pp_collective_mass"] = lambda: Coaxial6StateAxisymmetric(
+    a_priori=PITT_PETERS_COLLECTIVE_MASS)

@@ -14,6 +14,7 @@ Usage::
     python -m aircraft.identification.regenerate uh60_hover_3state        # ~5 min on 2 cores
     python -m aircraft.identification.regenerate coaxial_hover_6state     # ~25 min on 2 cores (wake runs)
     python -m aircraft.identification.regenerate coaxial_hover_12state    # ~40 min, or the fit only once cached
+    python -m aircraft.identification.regenerate coaxial_hover_6state_axisymmetric   # the 6-state's wake runs
     python -m aircraft.identification.regenerate --published              # the printed models
     python -m aircraft.identification.regenerate --check                  # which files are stale
 """
@@ -69,6 +70,15 @@ RECIPES = {
         "cyclic loads feeding the cyclic far wake, our rotor frames), fitted in stages (§6.4.3) "
         "from six swashplate and four prescribed tip-path-plane sweeps of our free-vortex wake "
         "(default resolution)"),
+    # the same six sweeps as coaxial_hover_6state, every coupling hover's axisymmetry
+    # allows, and the collective apparent-mass diagonal held at Pitt-Peters' (a priori:
+    # our nearly rank-one collective block fixes M and Lbar only in combination)
+    "coaxial_hover_6state_axisymmetric": Recipe(
+        "coaxial_compound", "coaxial_6state_axisymmetric_pp_collective_mass", 0.0053 + 0.0043,
+        "Coaxial compound (Table B.1), hover, system C_T 0.0096: 6-state M/Lbar/tau with every "
+        "coupling hover's axisymmetry allows (Eq. 5.3 plus the 1s/1c terms, our rotor frames), the "
+        "collective apparent masses m11, m44 held at Pitt-Peters' 8/(3 pi) a priori, identified from "
+        "the six swashplate sweeps of our free-vortex wake (default resolution)"),
 }
 
 #: Printed models shipped as files (converted to our rotor frames), by file name.
