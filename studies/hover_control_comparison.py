@@ -22,7 +22,7 @@ axisymmetry allows and the collective apparent masses held at Pitt-Peters'
 (converted to our rotor frames by :func:`aircraft.inflow.published.in_rotor_frames`)
 the same way: (B) the DC design on that aircraft, (C) a design optimised on it.
 ``--identified published`` puts Eq. 5.3 in cases B/C instead (the former default);
-``--regenerate`` rebuilds our three shipped models from the free wake first (about 40
+``--regenerate`` rebuilds our three shipped models from the free wake first (about 55
 minutes on 2 cores uncached; progress shown, wake runs cached).
 
 Each aircraft is our coaxial model (:mod:`aircraft.helicopter`) trimmed in hover
@@ -233,7 +233,7 @@ def main(argv=None):
                              "dissertation's Eq. 5.3 6-state model converted to our rotor frames")
     parser.add_argument("--regenerate", action="store_true",
                         help="rebuild our three shipped 6- and 12-state models from the free wake first "
-                             "(progress shown, wake runs cached; ~40 min on 2 cores uncached)")
+                             "(progress shown, wake runs cached; ~55 min on 2 cores uncached)")
     args = parser.parse_args(argv)
     t_start = time.perf_counter()
     if not args.skip_identification:
