@@ -4,20 +4,27 @@ Every results folder written through the ``rotorwake`` command line carries a
 ``manifest.json``:
 
 * ``code``: package version, ``git describe --always --dirty`` and a dirty flag;
-* ``sources``: the SHA-256 of every project module the study can have run: the
+* ``sources``: the SHA-256 of the bytes of every project module the study can have run: the
   static import closure of the study's module (:func:`import_closure`, every
   ``import`` statement, those inside functions included) together with what the run
   newly put in ``sys.modules`` (dynamic imports). Neither depends on what an earlier
   study in the same process loaded, so ``rotorwake results`` (every study in one
   process) records for each study the code it can depend on, no more;
+* ``code_digests`` (schema 2): for the same modules, the :func:`code_digest` of what
+  the interpreter runs: the syntax tree with docstrings and comments left out, so an
+  edit to documentation alone does not make results stale;
 * ``settings`` and ``settings_hash``: the command and its explicit options;
 * ``date`` (UTC, ISO 8601), ``wall_time_s`` [s], ``machine`` (cores, platform,
   Python / numpy / numba versions);
 * ``files``: the SHA-256 of every file in the folder.
 
 :func:`check_results` re-hashes those modules and files: a folder is *stale*
-when a module it was computed with has changed since, and *modified* when one of
-its files no longer matches the manifest. ``rotorwake check-results`` (and
+when the code of a module it was computed with has changed since (its bytes differ
+and so does its code digest), and *modified* when one of its files no longer
+matches the manifest. A schema-1 manifest (bytes only) is checked on bytes;
+:func:`upgrade_manifests` adds the code digests to those whose modules are still
+byte-identical, which is the only case where the digests are known to describe the
+code that ran. ``rotorwake check-results`` (and
 ``make check-results``) prints that table and fails when anything is not fresh.
 
 Module paths are stored relative to the project root, so a manifest written on
@@ -36,9 +43,9 @@ import sys
 from pathlib import Path
 
 __all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "ResultsManifestError", "code_version",
-           "settings_hash", "file_sha256", "imported_sources", "import_closure", "write_manifest",
+           "settings_hash", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
            "read_manifest",
-           "check_results"]
+           "check_results", "upgrade_manifests"]
 
 #: File name of the manifest in each results folder.
 MANIFEST_NAME = "manifest.json"
@@ -46,7 +53,8 @@ MANIFEST_NAME = "manifest.json"
 PROJECT_PACKAGES = ("flightid", "aircraft", "controllers", "studies")
 # bookkeeping modules that cannot change a number: not recorded
 _NOT_RESULTS_CODE = ("aircraft/provenance.py", "studies/cli.py")
-_SCHEMA = 1
+_SCHEMA = 2
+_READABLE_SCHEMAS = (1, 2)
 
 
 class ResultsManifestError(ValueError):
@@ -75,6 +83,59 @@ def file_sha256(path):
         for block in iter(lambda: fh.read(1 << 20), b""):
             digest.update(block)
     return digest.hexdigest()
+
+
+def _strip_docstrings(tree):
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            body = node.body
+            if (body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant)
+                    and isinstance(body[0].value.value, str)):
+                node.body = body[1:] or [ast.Pass()]
+    return tree
+
+
+def code_digest(path):
+    """SHA-256 of what a Python module runs: its syntax tree without docstrings.
+
+    Comments, blank lines, line breaks inside brackets and docstrings do not change
+    it; any change to a statement, name, constant or default does. A module that
+    reads ``__doc__`` keeps its docstrings in the digest (it may print them). The
+    digest is prefixed with the interpreter's ``major.minor`` version, because the
+    syntax tree's form is specific to it: on another Python the digests never
+    match and the byte hash alone decides.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A ``.py`` file.
+
+    Returns
+    -------
+    str
+        64 hexadecimal characters.
+
+    Raises
+    ------
+    SyntaxError
+        If the file is not valid Python.
+    """
+    source = Path(path).read_text()
+    tree = ast.parse(source, filename=str(path))
+    if "__doc__" not in source:
+        tree = _strip_docstrings(tree)
+    text = f"python{sys.version_info.major}.{sys.version_info.minor}\n" + ast.dump(tree, include_attributes=False)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _code_digests(sources, root):
+    """``{path: code_digest}`` for the ``.py`` files among ``sources`` (paths relative to root)."""
+    digests = {}
+    for rel in sources:
+        path = Path(root) / rel
+        if rel.endswith(".py") and path.is_file():
+            digests[rel] = code_digest(path)
+    return digests
 
 
 def code_version(root=None):
@@ -288,13 +349,16 @@ def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources
         numba_version = None
     files = {p.name: file_sha256(p) for p in sorted(folder.iterdir())
              if p.is_file() and p.name != MANIFEST_NAME}
+    root_path = Path(root) if root is not None else _project_root()
+    sources = sources if sources is not None else imported_sources(root)
     manifest = {
         "schema": _SCHEMA,
         "command": command,
         "settings": settings,
         "settings_hash": settings_hash(settings),
         "code": code_version(root),
-        "sources": sources if sources is not None else imported_sources(root),
+        "sources": sources,
+        "code_digests": _code_digests(sources, root_path),
         "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         "wall_time_s": round(float(wall_time_s), 2),
         "machine": {"cores": os.cpu_count(), "platform": platform.platform(),
@@ -332,8 +396,9 @@ def read_manifest(folder):
         manifest = json.loads(path.read_text())
     except json.JSONDecodeError as exc:
         raise ResultsManifestError(f"{path} is not valid JSON: {exc}") from exc
-    if manifest.get("schema") != _SCHEMA:
-        raise ResultsManifestError(f"{path} has schema {manifest.get('schema')!r}, expected {_SCHEMA}")
+    if manifest.get("schema") not in _READABLE_SCHEMAS:
+        raise ResultsManifestError(f"{path} has schema {manifest.get('schema')!r}, expected one of "
+                                   f"{_READABLE_SCHEMAS}")
     return manifest
 
 
@@ -364,8 +429,7 @@ def check_results(results_root="results", root=None):
         except ResultsManifestError as exc:
             rows.append({"folder": folder.name, "status": "no manifest", "date": None, "detail": str(exc)})
             continue
-        changed = [rel for rel, digest in manifest["sources"].items()
-                   if not (root / rel).is_file() or file_sha256(root / rel) != digest]
+        changed, documentation = _changed_sources(manifest, root)
         edited = [name for name, digest in manifest["files"].items()
                   if not (folder / name).is_file() or file_sha256(folder / name) != digest]
         extra = sorted(p.name for p in folder.iterdir()
@@ -376,5 +440,67 @@ def check_results(results_root="results", root=None):
             status, detail = "modified", "files differ from the manifest: " + ", ".join(edited + extra)
         else:
             status, detail = "fresh", f"{manifest['command']} ({manifest['code']['git']})"
+            if documentation:
+                detail += "; documentation only changed since in: " + ", ".join(documentation)
         rows.append({"folder": folder.name, "status": status, "date": manifest["date"], "detail": detail})
     return pd.DataFrame(rows, columns=["folder", "status", "date", "detail"])
+
+
+def _changed_sources(manifest, root):
+    """(modules whose code changed, modules whose bytes changed but code did not)."""
+    digests = manifest.get("code_digests", {})
+    changed, documentation = [], []
+    for rel, digest in manifest["sources"].items():
+        path = root / rel
+        if not path.is_file():
+            changed.append(rel)
+        elif file_sha256(path) != digest:
+            try:
+                same_code = rel in digests and code_digest(path) == digests[rel]
+            except SyntaxError:
+                same_code = False
+            (documentation if same_code else changed).append(rel)
+    return changed, documentation
+
+
+def upgrade_manifests(results_root="results", root=None):
+    """Add code digests to the schema-1 manifests whose modules are byte-identical now.
+
+    A schema-1 manifest records only the bytes of each module. Where every module
+    it lists still has those bytes, the code that ran is the code on disk, so its
+    :func:`code_digest` can be recorded honestly; the manifest is rewritten as
+    schema 2 (nothing else in it changes). Any other folder is left as it is.
+
+    Parameters
+    ----------
+    results_root : str or pathlib.Path
+        Folder holding one sub-folder per study.
+    root : str or pathlib.Path, optional
+        Project root the manifests' module paths are relative to.
+
+    Returns
+    -------
+    list of str
+        Names of the folders upgraded.
+    """
+    root = Path(root) if root is not None else _project_root()
+    upgraded = []
+    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
+        try:
+            manifest = read_manifest(folder)
+        except ResultsManifestError:
+            continue
+        if manifest["schema"] != 1:
+            continue
+        if any(not (root / rel).is_file() or file_sha256(root / rel) != digest
+               for rel, digest in manifest["sources"].items()):
+            continue
+        manifest["schema"] = _SCHEMA
+        upgraded_manifest = {}
+        for key, value in manifest.items():
+            upgraded_manifest[key] = value
+            if key == "sources":
+                upgraded_manifest["code_digests"] = _code_digests(value, root)
+        (folder / MANIFEST_NAME).write_text(json.dumps(upgraded_manifest, indent=2, sort_keys=False) + "\n")
+        upgraded.append(folder.name)
+    return upgraded

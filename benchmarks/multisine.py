@@ -151,15 +151,16 @@ def _weighting(model_a, model_b, settings):
     return pd.DataFrame(rows)
 
 
-def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=None):
+def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=None,
+        structure_key="coaxial_6state"):
     from aircraft.configs import coaxial_compound
-    from aircraft.identification import Coaxial6State, IdentificationSettings, identify_inflow
+    from aircraft.identification import IdentificationSettings, get_structure, identify_inflow
     from aircraft.identification.multisine import MultisineSettings, identify_inflow_multisine
     from aircraft.wake import WakeSettings
     from flightid.plotting import bode_with_coherence
 
     config = coaxial_compound()
-    structure = Coaxial6State()
+    structure = get_structure(structure_key)
     # default: the resolution of the shipped coaxial models (its six sweeps are the
     # first six records of the 12-state data set, so they come from the wake cache)
     wake = (WakeSettings() if wake_name == "default"
@@ -168,7 +169,8 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
     ms = MultisineSettings(duration=duration, amplitude=amplitude)
     omega = float(config.rotors[0].omega)
     dt = wake.azimuth_step / omega
-    print("== multisine benchmark: coaxial 6-state hover model, six sweeps vs ONE multisine record ==")
+    print(f"== multisine benchmark: coaxial 6-state hover model ({structure_key}), six sweeps vs ONE "
+          "multisine record ==")
     print(f"configuration: coaxial_compound() (omega {omega} rad/s), hover, system C_T {CT_SYSTEM:.4f} "
           f"split equally, torque balanced; {wake_name} wake {wake}, dt {dt:.5f} s; default IdentificationSettings "
           f"(sweeps {settings.sweep_s} s x 6 at {settings.amplitude} rad, band {settings.w_min}-{settings.w_max} "
@@ -269,7 +271,7 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
                (model_a.fit.structure.to_frd(w, name="six-sweep model"), "six-sweep model"),
                (model_b.fit.structure.to_frd(w, name="multisine model"), "multisine model")]
     fig = bode_with_coherence(sources, PAIRS, max_columns=4)
-    fig.suptitle(f"Coaxial 6-state lambda/C: six sweeps ({revs_a:.0f} revs) vs one multisine "
+    fig.suptitle(f"Coaxial 6-state ({structure_key}) lambda/C: six sweeps ({revs_a:.0f} revs) vs one multisine "
                  f"({revs_b:.0f} revs), {wake_name} wake")
     fig.savefig(out / "bode.png", dpi=110)
     print(f"\nwrote {out / 'parameters.csv'} and {out / 'bode.png'}")
@@ -343,6 +345,9 @@ def main(argv=None):
     parser.add_argument("--wake", choices=("coarse", "default"), default="coarse",
                         help="wake resolution (coarse: 15 deg steps, 2 revs, 6 elements; default: WakeSettings())")
     parser.add_argument("--out", type=Path, default=Path("benchmarks/results/multisine"))
+    parser.add_argument("--structure", default="coaxial_6state",
+                        help="key of aircraft.identification.STRUCTURES (e.g. "
+                             "coaxial_6state_axisymmetric_pp_collective_mass: the shipped axisymmetric model)")
     parser.add_argument("--synthetic-only", action="store_true",
                         help="only the synthetic-truth comparison (seconds; no wake)")
     args = parser.parse_args(argv)
@@ -356,7 +361,8 @@ def main(argv=None):
     with redirect_stdout(_Tee()):
         synthetic()
         if not args.synthetic_only:
-            run(args.duration, args.out, args.jobs, args.amplitude, args.wake, args.second_amplitude)
+            run(args.duration, args.out, args.jobs, args.amplitude, args.wake, args.second_amplitude,
+                args.structure)
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / ("synthetic.txt" if args.synthetic_only else "summary.txt")).write_text(buf.getvalue())
 

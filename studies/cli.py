@@ -164,6 +164,9 @@ def _parser():
     chk = sub.add_parser("check-results", help="say which committed results are stale",
                          formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     chk.add_argument("--results", default="results", help="folder with one sub-folder per study")
+    chk.add_argument("--upgrade", action="store_true",
+                     help="first add code digests to schema-1 manifests whose modules are unchanged, so that "
+                          "later documentation-only edits leave them fresh")
     return parser
 
 
@@ -333,6 +336,10 @@ def main(argv=None):
     if rest:
         _parser().error(f"unrecognised arguments: {' '.join(rest)}")
     if args.command == "check-results":
+        if args.upgrade:
+            from aircraft.provenance import upgrade_manifests
+            upgraded = upgrade_manifests(args.results)
+            print(f"upgraded {len(upgraded)} manifest(s) to code digests: {', '.join(upgraded) or 'none'}")
         return _check(args.results)
     # results: regenerate every committed folder with the options it was computed with
     names = args.only or [n for n, s in STUDIES.items() if s.in_results]

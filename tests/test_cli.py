@@ -78,9 +78,11 @@ def test_study_run_writes_a_fresh_manifest_and_staleness_is_detected(tmp_path, c
     # a hand-edited table is "modified"
     (out / "matrices.csv").write_text("edited\n")
     assert check_results(tmp_path / "results").status.tolist() == ["modified"]
-    # code that changed since the run makes it "stale" (manifest pointing at a changed source)
+    # code that changed since the run makes it "stale" (manifest pointing at a changed
+    # source: its bytes and its code digest both differ)
     manifest["files"]["matrices.csv"] = __import__("aircraft.provenance").provenance.file_sha256(out / "matrices.csv")
     manifest["sources"]["studies/pitt_peters_hover_check.py"] = "0" * 64
+    manifest["code_digests"]["studies/pitt_peters_hover_check.py"] = "0" * 64
     (out / "manifest.json").write_text(json.dumps(manifest))
     table = check_results(tmp_path / "results")
     assert table.status.tolist() == ["stale"] and "pitt_peters_hover_check.py" in table.detail[0]

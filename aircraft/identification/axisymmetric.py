@@ -7,12 +7,12 @@ by an azimuth ``psi`` turns each rotor's cyclic harmonics by ``R(psi)`` (in our
 per-rotor frames the lower rotor's by ``R(-psi)``), and a matrix left unchanged
 by every such turn has, for each 2x2 cyclic block,
 
-=====================  ========================  =========================
-block                  our rotor frames          printed common frame
-=====================  ========================  =========================
-own rotor (U<-U, L<-L) ``[[a, b], [-b, a]]``     ``[[a, b], [-b, a]]``
-cross rotor            ``[[a, b], [b, -a]]``     ``[[a, b], [-b, a]]``
-=====================  ========================  =========================
+=======================  ========================  =========================
+block                    our rotor frames          printed common frame
+=======================  ========================  =========================
+own rotor (U<-U, L<-L)   ``[[a, b], [-b, a]]``     ``[[a, b], [-b, a]]``
+cross rotor              ``[[a, b], [b, -a]]``     ``[[a, b], [-b, a]]``
+=======================  ========================  =========================
 
 A scaled rotation for a rotor's own block (a swirl of the pattern), a scaled
 reflection for the cross-rotor blocks in our mirrored frames. Eq. 5.3 is the
