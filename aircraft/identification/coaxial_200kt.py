@@ -13,8 +13,10 @@ The flight condition is the dissertation's: 200 kt, rotor (shaft) angle of attac
 (:func:`aircraft.configs.coaxial_compound` ``cruise=True``, mu = 0.54). The wake
 is trimmed to the system thrust the aircraft needs there (from the aircraft's own
 trim with Isolated Rotors, :func:`aircraft_thrust_at`), split equally with the
-torques balanced and zero hub moments on each rotor (mode ``"torque_balance"``;
-the forward-flight wake trim measures its Jacobian on the wake).
+torques balanced and each rotor's hub moments trimmed (mode ``"torque_balance"``;
+the forward-flight wake trim measures its Jacobian on the wake): the pitch
+moment to zero, the roll moment to the rotor's lift offset below (zero
+without one).
 
 Lift offset: the aircraft holds a differential lateral cyclic at trim (§7.2,
 ``lateral_cyclic_difference``), which leaves each rotor with a roll moment;
