@@ -28,6 +28,8 @@ STUDIES = [
      "rotorwake coaxial-wake-identification"),
     ("Coaxial rotor: quasi-steady check of the shipped models (held steps of the wake)", "coaxial_quasi_steady",
      "coaxial_quasi_steady", ["table.csv", "settling.csv"], "rotorwake coaxial-quasi-steady"),
+    ("Coaxial rotor: constrained 12-state models on one data set (trust per constraint)", "twelve_state_variants",
+     "twelve_state_variants", ["table.csv"], "rotorwake twelve-state-variants"),
     ("Coaxial rotor: design space of rotor spacing and thrust (recommendation 2)", "coaxial_design_space",
      "coaxial_design_space", ["summary.csv"], "rotorwake coaxial-design-space"),
     ("Single rotor in forward flight and wake distortion K_R (§4.4, §4.7)", "forward_flight_identification",

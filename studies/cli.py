@@ -101,6 +101,10 @@ STUDIES = {s.command: s for s in (
           "steady gain of the shipped coaxial models against held steps of our wake (the quasi-steady guard)",
           3.0, default_out="results/coaxial_quasi_steady",   # 142 s measured with --no-cache
           cached_note="wake runs cached under .cache/wake (seconds after)"),
+    Study("twelve-state-variants", "studies.twelve_state_variants",
+          "constrained 12-state coaxial hover models on one wake data set: trust and roll damping per constraint",
+          12.0, default_out="results/twelve_state_variants",
+          cached_note="wake runs cached under .cache/wake (the shipped 12-state's; about 40 min without them)"),
     Study("coaxial-design-space", "studies.coaxial_design_space",
           "6-state coaxial inflow model across rotor spacing x thrust, scheduled (issue 14, item 4)", 25.0,
           default_out="results/coaxial_design_space",

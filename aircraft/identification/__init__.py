@@ -32,6 +32,11 @@
                    feedthrough, a priori masses, axisymmetric terms): why Eq. 5.3 is not trusted
     wake_sensitivity.py  wake_setting_sensitivity: the same sweeps on wakes differing in
                    chosen WakeSettings, tabulated differences (WakeSensitivityResult)
+    twelve_state_variants.py  Coaxial12StateConstrained: the 12-state with freedoms removed
+                   by name (first-order collective, a priori values, removed couplings);
+                   compare_twelve_state_variants on one data set. Import it from the
+                   module (not re-exported yet: adding it here would mark every committed
+                   result stale until the next full regeneration)
 
 The wake (numba) is imported only when a pipeline runs.
 """
