@@ -15,7 +15,9 @@ Every results folder written through the ``rotorwake`` command line carries a
   edit to documentation alone does not make results stale;
 * ``settings`` and ``settings_hash``: the command and its explicit options;
 * ``date`` (UTC, ISO 8601), ``wall_time_s`` [s], ``machine`` (cores, platform,
-  Python / numpy / numba versions);
+  Python / numpy / numba versions, and the Biot-Savart ``kernel_backend`` the wake
+  runs used: a module of :data:`BACKEND_CODE`, the GPU kernel, can only have
+  computed a folder's numbers if its run used that backend);
 * ``files``: the SHA-256 of every file in the folder.
 
 :func:`check_results` re-hashes those modules and files: a folder is *stale*
@@ -42,10 +44,10 @@ import subprocess
 import sys
 from pathlib import Path
 
-__all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "ResultsManifestError", "code_version",
+__all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "BACKEND_CODE", "ResultsManifestError", "code_version",
            "settings_hash", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
            "read_manifest",
-           "check_results", "upgrade_manifests"]
+           "check_results", "upgrade_manifests", "record_kernel_backend"]
 
 #: File name of the manifest in each results folder.
 MANIFEST_NAME = "manifest.json"
@@ -53,6 +55,12 @@ MANIFEST_NAME = "manifest.json"
 PROJECT_PACKAGES = ("flightid", "aircraft", "controllers", "studies")
 # bookkeeping modules that cannot change a number: not recorded
 _NOT_RESULTS_CODE = ("aircraft/provenance.py", "studies/cli.py")
+#: Modules that compute numbers only on one Biot-Savart kernel backend: ``{path:
+#: backend}``. A change to one makes a folder stale only if its run used that
+#: backend (``machine["kernel_backend"]``), as the wake cache keys only GPU runs on
+#: the GPU kernel's source. A manifest that does not say which backend ran
+#: counts every module.
+BACKEND_CODE = {"aircraft/wake/gpu.py": "gpu"}
 _SCHEMA = 2
 _READABLE_SCHEMAS = (1, 2)
 
@@ -310,6 +318,17 @@ def imported_sources(root=None, packages=PROJECT_PACKAGES, modules=None):
     return dict(sorted(found.items()))
 
 
+def _kernel_backend():
+    """The Biot-Savart backend of this process's wake runs: ``"cpu"``, ``"gpu"``, or
+    ``"none"`` when no wake code was loaded (then no kernel ran)."""
+    biot_savart = sys.modules.get("aircraft.wake.biot_savart")
+    if biot_savart is None:
+        return "none"
+    # the backend in force (resolved on first use); the executor refuses wake
+    # results computed on another backend than the caller's, so this is every run's
+    return biot_savart.kernel_backend()
+
+
 def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources=None):
     """Write ``manifest.json`` into a results folder.
 
@@ -363,7 +382,7 @@ def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources
         "wall_time_s": round(float(wall_time_s), 2),
         "machine": {"cores": os.cpu_count(), "platform": platform.platform(),
                     "python": platform.python_version(), "numpy": numpy.__version__,
-                    "numba": numba_version},
+                    "numba": numba_version, "kernel_backend": _kernel_backend()},
         "files": files,
     }
     path = folder / MANIFEST_NAME
@@ -449,8 +468,11 @@ def check_results(results_root="results", root=None):
 def _changed_sources(manifest, root):
     """(modules whose code changed, modules whose bytes changed but code did not)."""
     digests = manifest.get("code_digests", {})
+    backend = manifest.get("machine", {}).get("kernel_backend")
     changed, documentation = [], []
     for rel, digest in manifest["sources"].items():
+        if backend is not None and rel in BACKEND_CODE and BACKEND_CODE[rel] != backend:
+            continue      # code of a backend the run did not use: it computed nothing here
         path = root / rel
         if not path.is_file():
             changed.append(rel)
@@ -504,3 +526,53 @@ def upgrade_manifests(results_root="results", root=None):
         (folder / MANIFEST_NAME).write_text(json.dumps(upgraded_manifest, indent=2, sort_keys=False) + "\n")
         upgraded.append(folder.name)
     return upgraded
+
+
+def record_kernel_backend(results_root="results", backend="cpu", root=None):
+    """Say which kernel backend the runs of older manifests used, where it is known.
+
+    Manifests written before ``machine["kernel_backend"]`` existed do not say, so
+    :func:`check_results` counts every module for them, the GPU kernel's too. Who
+    knows where they were computed can record it here: it is an attestation, not
+    a measurement, so it is never done implicitly. Only folders that are not stale
+    but for modules of :data:`BACKEND_CODE` of another backend are marked (a
+    folder that is stale for any other reason stays as it is), and only the
+    ``machine`` entry changes.
+
+    Parameters
+    ----------
+    results_root : str or pathlib.Path
+        Folder holding one sub-folder per study.
+    backend : {"cpu", "gpu"}
+        The backend the runs used.
+    root : str or pathlib.Path, optional
+        Project root the manifests' module paths are relative to.
+
+    Returns
+    -------
+    list of str
+        Names of the folders marked.
+
+    Raises
+    ------
+    ValueError
+        For a backend other than ``"cpu"`` or ``"gpu"``.
+    """
+    if backend not in ("cpu", "gpu"):
+        raise ValueError(f"backend must be 'cpu' or 'gpu', got {backend!r}")
+    root = Path(root) if root is not None else _project_root()
+    marked = []
+    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
+        try:
+            manifest = read_manifest(folder)
+        except ResultsManifestError:
+            continue
+        if "kernel_backend" in manifest.get("machine", {}):
+            continue
+        attested = {**manifest, "machine": {**manifest.get("machine", {}), "kernel_backend": backend}}
+        changed, _ = _changed_sources(attested, root)
+        if changed:
+            continue
+        (folder / MANIFEST_NAME).write_text(json.dumps(attested, indent=2, sort_keys=False) + "\n")
+        marked.append(folder.name)
+    return marked

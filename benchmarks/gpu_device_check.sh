@@ -9,7 +9,8 @@
 # (GPU kernel vs CPU kernel in single and double precision, a whole tiny wake run
 # on the GPU vs the CPU within CROSS_MACHINE_RTOL), then the GPU figures of
 # benchmarks/wake.py (kernel agreement, pairs/s, one default-resolution coaxial
-# revolution with the GPU kernel vs the CPU kernel on 2 threads).
+# revolution with the GPU kernel vs the CPU kernel on 2 threads, at three
+# resolutions), then benchmarks/gpu_per_call.py (one call at a wake's sizes).
 #
 # Python: $PYTHON, else .venv/bin/python, else python3 (numba, numpy, pandas,
 # scipy and pytest needed; the package is imported from this checkout).
@@ -56,3 +57,7 @@ echo "pytest exit status: $?"
 echo "== benchmarks/wake.py --gpu-only"
 timeout 120 "$PY" benchmarks/wake.py --gpu-only
 echo "benchmark exit status: $?"
+
+echo "== benchmarks/gpu_per_call.py"
+timeout 60 "$PY" benchmarks/gpu_per_call.py
+echo "per-call benchmark exit status: $?"

@@ -1,12 +1,13 @@
-"""Benchmark: the coaxial 6-state hover model from ONE multisine record vs six sweeps.
+"""Benchmark: an inflow model from ONE multisine record vs one sweep per control.
 
 Identifies :class:`aircraft.identification.Coaxial6State` on the coaxial compound
-rotor (hover, system C_T 0.0053 + 0.0043 split equally, torques balanced) on the
-same wake twice (``--wake coarse``, the default, or ``--wake default``, the
+rotor (hover, system C_T 0.0053 + 0.0043 split equally, torques balanced), or with
+``--rotor single`` the 3-state model of the UH-60-like rotor (C_T 0.0061, the
+shipped ``uh60_hover_3state``'s recipe), on the same wake twice (``--wake coarse``, the default, or ``--wake default``, the
 resolution of the shipped models):
 
-(a) six one-control sweeps (:func:`aircraft.identification.identify_inflow`);
-(b) ONE record of all six swashplate controls with orthogonal multisines
+(a) one sweep per control (six on the coaxial; :func:`aircraft.identification.identify_inflow`);
+(b) ONE record of all the swashplate controls with orthogonal multisines
     (:func:`aircraft.identification.identify_inflow_multisine`).
 
 Prints the wake revolutions each needs (target (b) <= 1/3 of (a)), the parameter
@@ -40,6 +41,15 @@ import pandas as pd
 CT_SYSTEM = 0.0053 + 0.0043
 PAIRS = [("lam0_U", "CT_U"), ("lam1s_U", "CL_U"), ("lam0_L", "CT_L"), ("lam1s_L", "CL_L"),
          ("lam0_L", "CT_U"), ("lam0_U", "CT_L"), ("lam1s_L", "CL_U"), ("lam1s_U", "CL_L")]
+#: ``--rotor``: (configuration function in aircraft.configs, default structure key,
+#: system trim C_T, Bode pairs). ``single`` is the UH-60-like rotor of the shipped,
+#: trusted ``uh60_hover_3state`` (its recipe's structure and C_T): the comparison on
+#: a structure that fits its wake, beside the coaxial one on structures that do not.
+ROTORS = {
+    "coaxial": ("coaxial_compound", "coaxial_6state", CT_SYSTEM, PAIRS),
+    "single": ("uh60_single_rotor", "single_rotor_3state", 0.0061,
+               [("lam0", "CT"), ("lam1s", "CL"), ("lam1c", "CM"), ("lam1s", "CM")]),
+}
 
 
 def _sweep_revolutions(settings, controls, omega, dt):
@@ -121,7 +131,12 @@ def _data_difference(model_a, model_b, settings, bands=((1.0, 5.0), (5.0, 12.0),
     return pd.DataFrame(rows)
 
 
-def _weighting(model_a, model_b, settings):
+def _sweeps_label(n):
+    """'six sweeps', 'three sweeps': the label of the one-sweep-per-control experiment."""
+    return {3: "three sweeps", 6: "six sweeps"}.get(n, f"{n} sweeps")
+
+
+def _weighting(model_a, model_b, settings, label="six sweeps"):
     """The six-sweep reduced structure refitted (from its own optimum) on each data set
     with each weighting; the largest parameter difference from the six-sweep model."""
     from flightid import MeasuredResponse, fit
@@ -133,10 +148,10 @@ def _weighting(model_a, model_b, settings):
 
     def weighted(r, coh):
         return MeasuredResponse(r.frdata, r.omega, coh, r.input_labels, r.output_labels)
-    cases = [("six sweeps", "six sweeps'", ra), ("multisine", "multisine's", rb),
-             ("multisine", "six sweeps'", weighted(rb, ra.coherence)),
-             ("six sweeps", "multisine's", weighted(ra, rb.coherence)),
-             ("six sweeps", "unit", weighted(ra, np.ones_like(ra.coherence))),
+    cases = [(label, f"{label}'", ra), ("multisine", "multisine's", rb),
+             ("multisine", f"{label}'", weighted(rb, ra.coherence)),
+             (label, "multisine's", weighted(ra, rb.coherence)),
+             (label, "unit", weighted(ra, np.ones_like(ra.coherence))),
              ("multisine", "unit", weighted(rb, np.ones_like(rb.coherence)))]
     rows = []
     for data, weights, resp in cases:
@@ -152,15 +167,20 @@ def _weighting(model_a, model_b, settings):
 
 
 def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=None,
-        structure_key="coaxial_6state"):
-    from aircraft.configs import coaxial_compound
+        structure_key=None, rotor="coaxial"):
+    from aircraft import configs
     from aircraft.identification import IdentificationSettings, get_structure, identify_inflow
     from aircraft.identification.multisine import MultisineSettings, identify_inflow_multisine
     from aircraft.wake import WakeSettings
     from flightid.plotting import bode_with_coherence
 
-    config = coaxial_compound()
+    config_name, default_key, ct_system, bode_pairs = ROTORS[rotor]
+    structure_key = structure_key or default_key
+    config = getattr(configs, config_name)()
     structure = get_structure(structure_key)
+    n_sweeps = len(structure.controls)
+    label = _sweeps_label(n_sweeps)
+    model_label = label.replace(" sweeps", "-sweep model")      # "six-sweep model"
     # default: the resolution of the shipped coaxial models (its six sweeps are the
     # first six records of the 12-state data set, so they come from the wake cache)
     wake = (WakeSettings() if wake_name == "default"
@@ -169,36 +189,37 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
     ms = MultisineSettings(duration=duration, amplitude=amplitude)
     omega = float(config.rotors[0].omega)
     dt = wake.azimuth_step / omega
-    print(f"== multisine benchmark: coaxial 6-state hover model ({structure_key}), six sweeps vs ONE "
+    print(f"== multisine benchmark: {rotor} hover model ({structure_key}), {n_sweeps} sweeps vs ONE "
           "multisine record ==")
-    print(f"configuration: coaxial_compound() (omega {omega} rad/s), hover, system C_T {CT_SYSTEM:.4f} "
-          f"split equally, torque balanced; {wake_name} wake {wake}, dt {dt:.5f} s; default IdentificationSettings "
-          f"(sweeps {settings.sweep_s} s x 6 at {settings.amplitude} rad, band {settings.w_min}-{settings.w_max} "
+    print(f"configuration: {config_name}() (omega {omega} rad/s), hover, system C_T {ct_system:.4f}"
+          f"{' split equally, torque balanced' if len(config.rotors) > 1 else ''}; {wake_name} wake {wake}, "
+          f"dt {dt:.5f} s; default IdentificationSettings "
+          f"(sweeps {settings.sweep_s} s x {n_sweeps} at {settings.amplitude} rad, band {settings.w_min}-{settings.w_max} "
           f"rad/s, fit {settings.fit_range}); multisine {ms}")
     t0 = time.perf_counter()
-    model_a = identify_inflow(config, None, structure, ct=CT_SYSTEM, settings=settings, n_jobs=n_jobs,
+    model_a = identify_inflow(config, None, structure, ct=ct_system, settings=settings, n_jobs=n_jobs,
                               progress=False)
     wall_a = time.perf_counter() - t0
     t0 = time.perf_counter()
-    model_b = identify_inflow_multisine(config, None, structure, ct=CT_SYSTEM, settings=settings, multisine=ms,
+    model_b = identify_inflow_multisine(config, None, structure, ct=ct_system, settings=settings, multisine=ms,
                                         n_jobs=n_jobs, progress=False)
     wall_b = time.perf_counter() - t0
     revs_a = _sweep_revolutions(settings, structure.controls, omega, dt)
     revs = model_b.provenance["revolutions"]
-    revs_b = revs["multisine_6controls"]
-    shared = revs["doublet_theta0_U"] + revs["zero_input"]
+    revs_b = next(v for k, v in revs.items() if k.startswith("multisine"))
+    shared = sum(v for k, v in revs.items() if k.startswith("doublet_")) + revs["zero_input"]
     ratio = revs_b / revs_a
-    print(f"\nwall time (runs already in the wake cache cost nothing): six sweeps {wall_a:.0f} s, "
+    print(f"\nwall time (runs already in the wake cache cost nothing): {n_sweeps} sweeps {wall_a:.0f} s, "
           f"multisine {wall_b:.0f} s")
     print(f"excitation: {model_b.provenance['excitation']}")
-    print(f"\nwake revolutions of the identification records: six sweeps {revs_a:.0f}, one multisine "
+    print(f"\nwake revolutions of the identification records: {n_sweeps} sweeps {revs_a:.0f}, one multisine "
           f"{revs_b:.0f} -> ratio {ratio:.3f} (target <= 1/3: {'met' if ratio <= 1 / 3 else 'NOT met'}); "
           f"both also march the same doublet + zero-input runs ({shared:.0f} revs): totals "
           f"{revs_a + shared:.0f} vs {revs_b + shared:.0f} ({(revs_b + shared) / (revs_a + shared):.3f})")
     cmp = _compare(model_a.parameters, model_b.parameters, settings.cramer_rao_max)
     well = cmp[cmp.well_identified]
     max_diff = well.diff_pct.abs().max() if len(well) else float("nan")
-    print(f"\nJ_ave: six sweeps {model_a.J_ave:.1f}, multisine {model_b.J_ave:.1f} -> ratio "
+    print(f"\nJ_ave: {n_sweeps} sweeps {model_a.J_ave:.1f}, multisine {model_b.J_ave:.1f} -> ratio "
           f"{model_b.J_ave / model_a.J_ave:.3f} (target within 20 %: "
           f"{'met' if abs(model_b.J_ave / model_a.J_ave - 1) <= 0.2 else 'NOT met'})")
     print(f"parameters: {len(well)} well identified in both (free, CR < {settings.cramer_rao_max:g} %); "
@@ -218,8 +239,8 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
     sa, sb = model_a.fit.structure, model_b.fit.structure
     cross = pd.DataFrame([
         {"model": m, "data": d, "J_ave_native_points": _cost_on(st, resp, model_a.cost_table)}
-        for m, st in (("six-sweep model", sa), ("multisine model", sb))
-        for d, resp in (("six sweeps", model_a.responses), ("multisine", model_b.responses))])
+        for m, st in ((model_label, sa), ("multisine model", sb))
+        for d, resp in ((label, model_a.responses), ("multisine", model_b.responses))])
     print("cross costs (each model on each experiment's lambda/C, the six-sweep pairs and bands):")
     print(cross.to_string(index=False, float_format=lambda v: f"{v:.1f}"))
     diff = _data_difference(model_a, model_b, settings) if np.array_equal(
@@ -233,20 +254,20 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
         print("median over the pairs: " + "; ".join(f"{b} rad/s {r.median_abs_dmag_db:.2f} dB / "
                                                      f"{r.median_abs_dphase_deg:.1f} deg"
                                                      for b, r in by_band.iterrows()))
-    weights = _weighting(model_a, model_b, settings)
+    weights = _weighting(model_a, model_b, settings, label)
     if len(weights):
         print("\nweighting (the six-sweep structure refitted from its optimum; M and Lbar differences from it):")
         print(weights[["data", "coherence_weights", "J_ave", "max_abs_diff_pct_M_Lbar", "worst_parameter"]]
               .to_string(index=False, float_format=lambda v: f"{v:.1f}"))
     if second_amplitude:
         ms2 = MultisineSettings(duration=duration, amplitude=second_amplitude)
-        model_c = identify_inflow_multisine(config, None, structure, ct=CT_SYSTEM, settings=settings, multisine=ms2,
+        model_c = identify_inflow_multisine(config, None, structure, ct=ct_system, settings=settings, multisine=ms2,
                                             n_jobs=n_jobs, progress=False)
         cmp2 = _compare(model_a.parameters, model_c.parameters, settings.cramer_rao_max)
         well2 = cmp2[cmp2.well_identified]
         cmp3 = _compare(model_b.parameters, model_c.parameters, settings.cramer_rao_max)
         well3 = cmp3[cmp3.well_identified]
-        print(f"\nsecond multisine, peak {second_amplitude:g} rad: J_ave {model_c.J_ave:.1f}; against the six sweeps "
+        print(f"\nsecond multisine, peak {second_amplitude:g} rad: J_ave {model_c.J_ave:.1f}; against the {n_sweeps} sweeps "
               f"{len(well2)} well identified, largest difference {well2.diff_pct.abs().max():.1f} %; against the "
               f"{amplitude:g} rad multisine {len(well3)} well identified, largest difference "
               f"{well3.diff_pct.abs().max():.1f} %")
@@ -257,21 +278,21 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
     diff.to_csv(out / "data_difference.csv", index=False)
     cmp_same.to_csv(out / "parameters_same_structure.csv", index=False)
     cross.to_csv(out / "cross_costs.csv", index=False)
-    print("\ncost table (six sweeps | multisine):")
+    print(f"\ncost table ({n_sweeps} sweeps | multisine):")
     ct = model_a.cost_table.merge(model_b.cost_table, on=["output", "input"], how="outer",
                                   suffixes=("_sweeps", "_multisine"))
     print(ct.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
-    print("\nverification on the doublet (six sweeps):")
+    print(f"\nverification on the doublet ({n_sweeps} sweeps):")
     print(model_a.verification_table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
     print("verification on the doublet (multisine):")
     print(model_b.verification_table.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
     cmp.to_csv(out / "parameters.csv", index=False)
     w = model_a.responses.omega
-    sources = [(model_a.responses, "six sweeps (data)"), (model_b.responses, "multisine (data)"),
-               (model_a.fit.structure.to_frd(w, name="six-sweep model"), "six-sweep model"),
+    sources = [(model_a.responses, f"{label} (data)"), (model_b.responses, "multisine (data)"),
+               (model_a.fit.structure.to_frd(w, name=model_label), model_label),
                (model_b.fit.structure.to_frd(w, name="multisine model"), "multisine model")]
-    fig = bode_with_coherence(sources, PAIRS, max_columns=4)
-    fig.suptitle(f"Coaxial 6-state ({structure_key}) lambda/C: six sweeps ({revs_a:.0f} revs) vs one multisine "
+    fig = bode_with_coherence(sources, bode_pairs, max_columns=4)
+    fig.suptitle(f"{rotor} ({structure_key}) lambda/C: {n_sweeps} sweeps ({revs_a:.0f} revs) vs one multisine "
                  f"({revs_b:.0f} revs), {wake_name} wake")
     fig.savefig(out / "bode.png", dpi=110)
     print(f"\nwrote {out / 'parameters.csv'} and {out / 'bode.png'}")
@@ -345,8 +366,11 @@ def main(argv=None):
     parser.add_argument("--wake", choices=("coarse", "default"), default="coarse",
                         help="wake resolution (coarse: 15 deg steps, 2 revs, 6 elements; default: WakeSettings())")
     parser.add_argument("--out", type=Path, default=Path("benchmarks/results/multisine"))
-    parser.add_argument("--structure", default="coaxial_6state",
-                        help="key of aircraft.identification.STRUCTURES (e.g. "
+    parser.add_argument("--rotor", choices=sorted(ROTORS), default="coaxial",
+                        help="coaxial (default structure coaxial_6state) or the UH-60-like single rotor "
+                             "(single_rotor_3state, the shipped trusted model's structure)")
+    parser.add_argument("--structure", default=None,
+                        help="key of aircraft.identification.STRUCTURES (default: the rotor's; e.g. "
                              "coaxial_6state_axisymmetric_pp_collective_mass: the shipped axisymmetric model)")
     parser.add_argument("--synthetic-only", action="store_true",
                         help="only the synthetic-truth comparison (seconds; no wake)")
@@ -362,7 +386,7 @@ def main(argv=None):
         synthetic()
         if not args.synthetic_only:
             run(args.duration, args.out, args.jobs, args.amplitude, args.wake, args.second_amplitude,
-                args.structure)
+                args.structure, args.rotor)
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / ("synthetic.txt" if args.synthetic_only else "summary.txt")).write_text(buf.getvalue())
 

@@ -11,9 +11,11 @@ always use the CPU kernel (also on a machine with a GPU).
 Then the GPU figures when :func:`aircraft.wake.gpu.available` (else it prints
 "GPU: no device" and why): the agreement of the GPU kernel with the CPU kernel,
 its pair rate (array in, array out: transfers included) at the benchmark size and
-at a size that fills the device, and the wall time of the same coaxial revolution
+at a size that fills the device, and the wall time of a coaxial revolution
 with the GPU kernel against the CPU kernel on 2 threads (the 2-core machine the
-projection is for), the rest of the march on 2 host threads in both.
+projection is for), the rest of the march on 2 host threads in both, at the
+default resolution and two finer ones (:data:`GPU_RESOLUTIONS`), each with the
+time inside the kernel calls and the bound an instant kernel would give.
 
 Options: ``--gpu-only`` runs only the GPU part (and the 2-thread CPU revolution
 it is compared with).
@@ -29,7 +31,17 @@ import numpy as np
 from aircraft.configs import coaxial_compound
 from aircraft.wake import (FreeVortexWake, WakeSettings, gpu, segment_velocity,
                            segment_velocity_numpy)
+from aircraft.wake import wake as wake_module
 from aircraft.wake.biot_savart import set_kernel_backend
+
+#: resolutions of the GPU-vs-CPU revolution comparison: (label, WakeSettings fields).
+#: The default is the studies' wake; the finer ones show where the kernel's share
+#: of a revolution, and so what a faster kernel can gain, grows.
+GPU_RESOLUTIONS = (
+    ("default (10 deg, 4+1 revs)", {}),
+    ("5 deg, 4+1 revs", {"azimuth_step": math.radians(5.0)}),
+    ("5 deg, 8+1 revs", {"azimuth_step": math.radians(5.0), "wake_revolutions": 8.0}),
+)
 
 
 def pair_rates(m=1500, n=1800, seed=0):
@@ -55,15 +67,37 @@ def pair_rates(m=1500, n=1800, seed=0):
     return rates
 
 
-def revolution_time(threads):
+def revolution_time(threads, kernel_time=False, **settings):
+    """Wall time [s] of the second coaxial revolution (the first warms up and compiles).
+
+    ``settings`` are :class:`WakeSettings` fields (default resolution without).
+    With ``kernel_time=True`` also the time spent inside the Biot-Savart calls of
+    that revolution [s], measured by timing each call the march makes; else None.
+    """
     numba.set_num_threads(threads)
-    s = WakeSettings()
+    s = WakeSettings(**settings)
     w = FreeVortexWake(coaxial_compound(), s)
     w.controls.update(theta0_U=0.16, theta0_L=0.17)
     w.march(s.steps_per_rev)                                   # warm up
-    t0 = time.perf_counter()
-    w.march(s.steps_per_rev)
-    return time.perf_counter() - t0, s, w
+    spent = []
+    if kernel_time:
+        # the march calls the kernel through its module's own name: time each call there
+        original = wake_module.segment_velocity
+
+        def timed(*args, **kwargs):
+            t = time.perf_counter()
+            out = original(*args, **kwargs)
+            spent.append(time.perf_counter() - t)
+            return out
+        wake_module.segment_velocity = timed
+    try:
+        t0 = time.perf_counter()
+        w.march(s.steps_per_rev)
+        elapsed = time.perf_counter() - t0
+    finally:
+        if kernel_time:
+            wake_module.segment_velocity = original
+    return elapsed, s, w, (sum(spent) if kernel_time else None)
 
 
 def _inputs(m, n, seed=0):
@@ -110,16 +144,20 @@ def gpu_main():
         print(f"GPU Biot-Savart pairs/s at {m} x {n} (copies included): double {r['double']:.3e}, "
               f"single {r['single']:.3e}")
     threads = min(2, numba.config.NUMBA_NUM_THREADS)
-    t_cpu, s, _ = revolution_time(threads)
-    set_kernel_backend("gpu")
-    try:
-        t_gpu, _, _ = revolution_time(threads)
-    finally:
-        set_kernel_backend("cpu")
-        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
-    print(f"coaxial revolution, {math.degrees(s.azimuth_step):g} deg steps, {s.kernel_precision} "
-          f"kernel, host on {threads} threads: GPU kernel {t_gpu:.2f} s, CPU kernel {t_cpu:.2f} s "
-          f"({t_cpu / t_gpu:.1f}x)")
+    for label, settings in GPU_RESOLUTIONS:
+        t_cpu, s, _, k_cpu = revolution_time(threads, kernel_time=True, **settings)
+        set_kernel_backend("gpu")
+        try:
+            t_gpu, _, _, k_gpu = revolution_time(threads, kernel_time=True, **settings)
+        finally:
+            set_kernel_backend("cpu")
+            numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+        # Amdahl: the rest of the march stays on the host whichever kernel runs
+        bound = t_cpu / max(t_cpu - k_cpu, 1e-12)
+        print(f"coaxial revolution, {label}, {s.kernel_precision} kernel, host on {threads} threads: "
+              f"GPU kernel {t_gpu:.2f} s (kernel calls {k_gpu:.2f} s), CPU kernel {t_cpu:.2f} s "
+              f"(kernel calls {k_cpu:.2f} s, {100 * k_cpu / t_cpu:.0f} %): {t_cpu / t_gpu:.1f}x "
+              f"(bound with an instant kernel {bound:.1f}x)")
 
 
 def main(argv=None):
@@ -137,8 +175,8 @@ def main(argv=None):
     print(f"Biot-Savart pairs/s: compiled double {r['double']:.3e}, compiled single "
           f"{r['single']:.3e}, numpy {r['numpy']:.3e}; ratio to numpy: double "
           f"{r['double'] / r['numpy']:.1f}x, single {r['single'] / r['numpy']:.1f}x (target >= 50x)")
-    t_all, s, w = revolution_time(numba.config.NUMBA_NUM_THREADS)
-    t_one, _, _ = revolution_time(1)
+    t_all, s, w, _ = revolution_time(numba.config.NUMBA_NUM_THREADS)
+    t_one, _, _, _ = revolution_time(1)
     print(f"coaxial revolution, {math.degrees(s.azimuth_step):g} deg steps, "
           f"{s.wake_revolutions:g}+{s.buffer_revolutions:g} revs of wake, {s.n_elements} elements, "
           f"{s.kernel_precision} kernel: {t_all:.2f} s on {numba.config.NUMBA_NUM_THREADS} threads, "

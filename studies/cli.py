@@ -171,6 +171,10 @@ def _parser():
     chk.add_argument("--upgrade", action="store_true",
                      help="first add code digests to schema-1 manifests whose modules are unchanged, so that "
                           "later documentation-only edits leave them fresh")
+    chk.add_argument("--record-kernel-backend", choices=("cpu", "gpu"), default=None,
+                     help="first record, in manifests that do not say, which Biot-Savart backend their runs "
+                          "used (an attestation by whoever knows where they ran; see "
+                          "aircraft.provenance.record_kernel_backend)")
     return parser
 
 
@@ -344,6 +348,11 @@ def main(argv=None):
             from aircraft.provenance import upgrade_manifests
             upgraded = upgrade_manifests(args.results)
             print(f"upgraded {len(upgraded)} manifest(s) to code digests: {', '.join(upgraded) or 'none'}")
+        if args.record_kernel_backend:
+            from aircraft.provenance import record_kernel_backend
+            marked = record_kernel_backend(args.results, args.record_kernel_backend)
+            print(f"recorded kernel backend {args.record_kernel_backend!r} in {len(marked)} manifest(s): "
+                  f"{', '.join(marked) or 'none'}")
         return _check(args.results)
     # results: regenerate every committed folder with the options it was computed with
     names = args.only or [n for n, s in STUDIES.items() if s.in_results]

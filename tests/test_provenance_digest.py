@@ -122,3 +122,74 @@ def test_unknown_schema_is_refused(project):
     manifest["schema"] = 99
     path.write_text(json.dumps(manifest))
     assert _status(project)[0] == "no manifest"
+
+
+@pytest.fixture
+def gpu_project(tmp_path):
+    """A project with a 'GPU kernel' module at the path BACKEND_CODE names, and one
+    results folder computed from it and another module, on the CPU backend."""
+    from aircraft.provenance import BACKEND_CODE
+    gpu_rel = next(rel for rel, backend in BACKEND_CODE.items() if backend == "gpu")
+    for rel in (gpu_rel, "pkg/m.py"):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text(MODULE)
+    folder = tmp_path / "results" / "study"
+    folder.mkdir(parents=True)
+    (folder / "table.csv").write_text("a\n1\n")
+    sources = {rel: file_sha256(tmp_path / rel) for rel in (gpu_rel, "pkg/m.py")}
+    write_manifest(folder, command="test", settings={}, wall_time_s=1.0, root=tmp_path, sources=sources)
+    return tmp_path, gpu_rel, folder
+
+
+def _set_backend(folder, backend):
+    path = folder / "manifest.json"
+    manifest = json.loads(path.read_text())
+    if backend is None:
+        manifest["machine"].pop("kernel_backend", None)
+    else:
+        manifest["machine"]["kernel_backend"] = backend
+    path.write_text(json.dumps(manifest))
+
+
+@pytest.mark.parametrize("backend, expected", [("cpu", "fresh"), ("none", "fresh"), ("gpu", "stale"),
+                                               (None, "stale")])
+def test_gpu_kernel_code_counts_only_for_runs_on_the_gpu(gpu_project, backend, expected):
+    root, gpu_rel, folder = gpu_project
+    _set_backend(folder, backend)
+    (root / gpu_rel).write_text(MODULE.replace("return 2 * x", "return 3 * x"))
+    status, detail = _status(root)
+    assert status == expected
+    if expected == "stale":
+        assert gpu_rel in detail
+    # any other module's code change stales the folder whatever the backend
+    (root / "pkg" / "m.py").write_text(MODULE.replace("return 2 * x", "return 4 * x"))
+    status, detail = _status(root)
+    assert status == "stale" and "pkg/m.py" in detail
+
+
+def test_write_manifest_records_the_kernel_backend(tmp_path):
+    from aircraft.wake import biot_savart
+    folder = tmp_path / "r"
+    folder.mkdir()
+    write_manifest(folder, command="test", settings={}, wall_time_s=1.0, root=tmp_path, sources={})
+    recorded = json.loads((folder / "manifest.json").read_text())["machine"]["kernel_backend"]
+    assert recorded == biot_savart.kernel_backend()          # the wake code is loaded here
+
+
+def test_record_kernel_backend_is_explicit_and_only_where_it_makes_a_folder_fresh(gpu_project):
+    from aircraft.provenance import record_kernel_backend
+    root, gpu_rel, folder = gpu_project
+    _set_backend(folder, None)                               # an older manifest: says nothing
+    (root / gpu_rel).write_text(MODULE.replace("return 2 * x", "return 3 * x"))
+    assert _status(root)[0] == "stale"                       # never assumed
+    with pytest.raises(ValueError, match="backend must be 'cpu' or 'gpu'"):
+        record_kernel_backend(root / "results", "tpu", root=root)
+    # stale for another module as well: left as it is
+    (root / "pkg" / "m.py").write_text(MODULE.replace("return 2 * x", "return 4 * x"))
+    assert record_kernel_backend(root / "results", "cpu", root=root) == []
+    (root / "pkg" / "m.py").write_text(MODULE)
+    assert record_kernel_backend(root / "results", "cpu", root=root) == ["study"]
+    assert _status(root)[0] == "fresh"
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert manifest["machine"]["kernel_backend"] == "cpu"
+    assert record_kernel_backend(root / "results", "cpu", root=root) == []   # already says

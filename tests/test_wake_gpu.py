@@ -146,7 +146,10 @@ _SIMULATOR_SCRIPT = textwrap.dedent("""
 def test_kernel_under_cuda_simulator_matches_cpu_kernel(tmp_path, cpu_backend):
     tg, a, b, g, rc = _segments(3, m=50, n=80)
     np.savez(tmp_path / "in.npz", tg=tg, a=a, b=b, g=g, rc=rc)
-    env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1", PYTHONPATH=str(ROOT))
+    # the checkout first, then whatever path the caller set (a device machine
+    # may bring packages on PYTHONPATH)
+    pythonpath = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
+    env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1", PYTHONPATH=pythonpath)
     env.pop(gpu.SIMULATOR_ENV, None)
     env.pop(biot_savart.KERNEL_ENV, None)
     done = subprocess.run([sys.executable, "-c", _SIMULATOR_SCRIPT, str(tmp_path / "in.npz"),
@@ -201,3 +204,15 @@ def test_gpu_backend_without_device_is_a_clear_error(cpu_backend):
     if not gpu.simulated():
         with pytest.raises(RuntimeError, match="needs a CUDA device"):
             gpu.segment_velocity(np.zeros((2, 3)), np.zeros((1, 3)), np.ones((1, 3)), 1.0, 0.1)
+
+
+@pytest.mark.parametrize("m, n", [(1, 1), (7, 31), (50, 80), (1160, 3008), (20000, 20000), (3, 100000)])
+def test_segment_chunks_cover_every_segment_once(m, n):
+    # the pair kernel's thread (i, c) sums segments [c chunk, min(n, (c + 1) chunk)):
+    # the chunks must tile 0..n-1 exactly, whatever the sizes
+    n_chunks = gpu._n_chunks(m, n)
+    chunk = -(-n // n_chunks)
+    covered = np.concatenate([np.arange(c * chunk, min(n, (c + 1) * chunk)) for c in range(n_chunks)])
+    np.testing.assert_array_equal(covered, np.arange(n))
+    assert 1 <= n_chunks <= max(1, -(-n // gpu.MIN_CHUNK))
+    assert n_chunks == 1 or m * (n_chunks - 1) < gpu.TARGET_THREADS

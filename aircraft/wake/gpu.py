@@ -7,21 +7,30 @@ Same signature, same units, same result to the round-off of the chosen precision
 
 Kernel
 ------
-One CUDA thread per target. Each thread sums the segments in index order, in the
-operation order of the CPU kernel (same formula, same precomputed
-target-independent terms ``r0 = B - A``, ``Gamma / 4 pi``, ``(r_c |r0|)^4``, the
-same ``tiny`` guards), in float32 or float64. There is no reduction across
-threads and no atomic, so a result is deterministic run to run. It is not
-bit-identical to the CPU kernel: NVVM contracts multiply-adds into fused
-multiply-adds (its default, even without ``fastmath``), which rounds once where
-the CPU rounds twice; the difference is round-off of the working precision
-(tested: within 1e-5 of max |v| in single precision, within 1e-10 in double).
+Each target's sum over the segments is split into chunks of consecutive
+segments (:func:`_n_chunks`: enough chunks that targets x chunks reach
+:data:`TARGET_THREADS`, none shorter than :data:`MIN_CHUNK`). One CUDA thread per
+(target, chunk) sums its chunk in index order, in the operation order of the
+CPU kernel (same formula, same precomputed target-independent terms
+``r0 = B - A``, ``Gamma / 4 pi``, ``(r_c |r0|)^4``, the same ``tiny`` guards), in
+float32 or float64; a second kernel adds each target's partial sums in chunk
+order. One thread per target alone left an H200 nearly idle on a wake's ~1e3
+targets (1.35 ms for 1160 x 3008 pairs; 68 us in 64 chunks, measured). There is
+no atomic and the order of every sum is fixed by the sizes alone, so a result is
+deterministic run to run. It is not bit-identical to the CPU kernel: the chunks
+are added apart and then together (the CPU adds every segment into one running
+sum), and NVVM contracts multiply-adds into fused multiply-adds (its default,
+even without ``fastmath``), which rounds once where the CPU rounds twice; the
+difference is round-off of the working precision (tested: within 1e-5 of max
+|v| in single precision, within 1e-10 in double).
 The wake cache keys GPU runs apart from CPU runs (backend name and this file's
 source, :func:`aircraft.wake.sweeps._kernel_key`), so the two never mix.
 
-Device buffers (targets, packed segment records, result) are kept per precision
-and grown when a call needs more, so a wake march does three host-device copies
-and one launch per call and no allocation once the wake has reached its size.
+Buffers (a pinned host staging buffer holding the targets and packed segment
+records, its device copy, the partial sums, the result on the device and in
+pinned host memory) are kept per precision and grown when a call needs more, so
+a wake march does one copy in, two launches and one copy out per call and no
+allocation once the wake has reached its size.
 
 Availability
 ------------
@@ -59,15 +68,24 @@ except Exception as exc:   # pragma: no cover - numba always ships numba.cuda to
     _IMPORT_ERROR = f"numba.cuda cannot be imported ({type(exc).__name__}: {exc})"
 
 __all__ = ["available", "simulated", "unavailable_reason", "device_name", "segment_velocity",
-           "SIMULATOR_ENV", "THREADS_PER_BLOCK"]
+           "SIMULATOR_ENV", "THREADS_PER_BLOCK", "BLOCK", "TARGET_THREADS",
+           "MIN_CHUNK"]
 
 #: Environment variable: ``1`` makes :func:`available` True under numba's CUDA
 #: simulator (an explicit request; the simulator is never chosen by ``"auto"``
 #: otherwise).
 SIMULATOR_ENV = "ROTORWAKE_GPU_SIMULATOR"
-#: CUDA threads per block (one target each) [-]. Small blocks spread the wake's
-#: few thousand targets over more multiprocessors.
+#: CUDA threads per block of the kernel that adds the chunks' partial sums [-].
 THREADS_PER_BLOCK = 64
+#: Block of the pair kernel: 32 targets (a warp, whose threads then read the same
+#: segment record at once) x 4 segment chunks [-].
+BLOCK = (32, 4)
+#: Threads the pair kernel aims to run at once [-]: the targets times the chunks
+#: each target's sum is split into (an H200 has 132 multiprocessors of up to
+#: 2048 resident threads).
+TARGET_THREADS = 1 << 17
+#: Fewest segments one thread sums [-].
+MIN_CHUNK = 32
 
 _FOUR_PI = 4.0 * math.pi
 _TINY = 1e-12            # as in the CPU kernel
@@ -77,7 +95,7 @@ _N_FIELDS = 11           # packed segment record: A, B, r0 (3 each), Gamma/4pi, 
 _probe_lock = threading.Lock()    # two locks: the probe launches the kernel
 _launch_lock = threading.Lock()
 _probe_result = None     # (available, reason), set once by available()
-_buffers = {}            # dtype -> {"tg": dev (mcap, 3), "seg": dev (ncap, 11), "out": dev (mcap, 3)}
+_buffers = {}            # dtype -> {"stage"/"host_out": pinned host, "in"/"part"/"out": device}
 
 
 def simulated():
@@ -94,53 +112,69 @@ def simulated():
     return bool(config.ENABLE_CUDASIM)
 
 
+def _n_chunks(m, n):
+    """How many segment chunks each target's sum is split into (a function of the sizes only)."""
+    # enough threads to fill a large device (TARGET_THREADS), but no chunk shorter
+    # than MIN_CHUNK segments: past that the partial sums cost more than they save
+    return max(1, min(-(-TARGET_THREADS // m), -(-n // MIN_CHUNK)))
+
+
 if cuda is not None:
     @cuda.jit(fastmath=False, cache=not simulated())
-    def _kernel(tg, seg, out, m, n, one, tiny):
-        # tg (>= m, 3), seg (>= n, 11), out (>= m, 3): reused buffers, only the
-        # first m / n rows are this call's. ``one`` and ``tiny`` carry the dtype.
-        i = cuda.grid(1)
-        if i >= m:
+    def _chunk_kernel(buf, part, m, n, n_chunks, chunk, one, tiny):
+        # buf: this call's inputs packed flat, targets (m x 3) then segment
+        # records (n x 11); part (>= n_chunks, >= m, 3): thread (i, c) writes the
+        # sum over segments [c chunk, (c + 1) chunk) at target i, in index order.
+        # One thread per target alone leaves a large device nearly idle on the
+        # wake's ~1e3 targets (measured on an H200: 1.35 ms for 1160 x 3008 pairs,
+        # 68 us in 64 chunks); ``one`` and ``tiny`` carry the dtype.
+        i, c = cuda.grid(2)
+        if i >= m or c >= n_chunks:     # the grid rounds both up to whole blocks
             return
-        qx = tg[i, 0]
-        qy = tg[i, 1]
-        qz = tg[i, 2]
+        j0 = c * chunk
+        j1 = min(n, j0 + chunk)      # empty past n: the partial sum is then zero
+        qx = buf[3 * i]
+        qy = buf[3 * i + 1]
+        qz = buf[3 * i + 2]
         ux = one - one
         uy = one - one
         uz = one - one
-        for j in range(n):       # sequential, in index order, as on the CPU
-            axj = seg[j, 0]
-            ayj = seg[j, 1]
-            azj = seg[j, 2]
-            bxj = seg[j, 3]
-            byj = seg[j, 4]
-            bzj = seg[j, 5]
-            r0xj = seg[j, 6]
-            r0yj = seg[j, 7]
-            r0zj = seg[j, 8]
-            gj = seg[j, 9]
-            rlj = seg[j, 10]
-            r1x = qx - axj
-            r1y = qy - ayj
-            r1z = qz - azj
-            r2x = qx - bxj
-            r2y = qy - byj
-            r2z = qz - bzj
+        for j in range(j0, j1):       # sequential, in index order, as on the CPU
+            k = 3 * m + _N_FIELDS * j
+            r1x = qx - buf[k]
+            r1y = qy - buf[k + 1]
+            r1z = qz - buf[k + 2]
+            r2x = qx - buf[k + 3]
+            r2y = qy - buf[k + 4]
+            r2z = qz - buf[k + 5]
             cx = r1y * r2z - r1z * r2y
             cy = r1z * r2x - r1x * r2z
             cz = r1x * r2y - r1y * r2x
             c2 = cx * cx + cy * cy + cz * cz
             i1 = one / (math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z) + tiny)
             i2 = one / (math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z) + tiny)
-            dot = (r0xj * (r1x * i1 - r2x * i2) + r0yj * (r1y * i1 - r2y * i2)
-                   + r0zj * (r1z * i1 - r2z * i2))
-            f = gj * dot / (math.sqrt(c2 * c2 + rlj) + tiny)
+            dot = (buf[k + 6] * (r1x * i1 - r2x * i2) + buf[k + 7] * (r1y * i1 - r2y * i2)
+                   + buf[k + 8] * (r1z * i1 - r2z * i2))
+            f = buf[k + 9] * dot / (math.sqrt(c2 * c2 + buf[k + 10]) + tiny)
             ux += f * cx
             uy += f * cy
             uz += f * cz
-        out[i, 0] = ux
-        out[i, 1] = uy
-        out[i, 2] = uz
+        part[c, i, 0] = ux
+        part[c, i, 1] = uy
+        part[c, i, 2] = uz
+
+    @cuda.jit(fastmath=False, cache=not simulated())
+    def _sum_kernel(part, out, m, n_chunks, one):
+        # out[i] = the partial sums of target i added in chunk order: a fixed
+        # order, so a result is the same run to run (no atomics)
+        i = cuda.grid(1)
+        if i >= m:
+            return
+        for k in range(3):
+            s = one - one
+            for c in range(n_chunks):
+                s += part[c, i, k]
+            out[i, k] = s
 
 
 def _self_check(where):
@@ -232,40 +266,61 @@ def device_name():
     return "CUDA simulator" if simulated() else _device_name()
 
 
-def _buffer(dtype, name, rows, cols):
-    """A device array of at least ``rows`` rows for this precision, reused across calls."""
+def _buffer(dtype, name, shape, pinned=False):
+    """A device (or pinned host) array for this precision, reused across calls.
+
+    Every dimension but a last one of 3 (x, y, z) is at least ``shape``'s; the
+    kernels are told how much of it is this call's.
+    """
     store = _buffers.setdefault(dtype, {})
     buf = store.get(name)
-    if buf is None or buf.shape[0] < rows:
-        buf = cuda.device_array((max(rows, int(1.25 * rows) + 64), cols), dtype=dtype)
+    grow = len(shape) if len(shape) == 1 else len(shape) - 1
+    if buf is None or any(have < want for have, want in zip(buf.shape, shape)):
+        # a quarter past what is asked, so a growing wake reallocates rarely
+        grown = tuple(max(want, int(1.25 * want) + 64) for want in shape[:grow]) + tuple(shape[grow:])
+        if buf is not None:
+            grown = tuple(max(g, have) for g, have in zip(grown, buf.shape))
+        buf = (cuda.pinned_array if pinned else cuda.device_array)(grown, dtype=dtype)
         store[name] = buf
     return buf
 
 
 def _launch(targets, seg_a, seg_b, gamma, rc, dtype):
-    """Pack, copy, run the kernel and copy back; float64 (M, 3) out. Inputs checked."""
+    """Pack, copy, run the kernels and copy back; float64 (M, 3) out. Inputs checked."""
     m, n = targets.shape[0], seg_a.shape[0]
     r0 = seg_b - seg_a
     rcl = rc * rc * np.einsum("ij,ij->i", r0, r0)
-    seg = np.empty((n, _N_FIELDS), dtype=dtype)   # target-independent terms in float64, then cast
-    seg[:, 0:3] = seg_a
-    seg[:, 3:6] = seg_b
-    seg[:, 6:9] = r0
-    seg[:, 9] = gamma / _FOUR_PI
-    seg[:, 10] = rcl * rcl
-    tg = np.ascontiguousarray(targets, dtype=dtype)
+    n_chunks = _n_chunks(m, n)
+    chunk = -(-n // n_chunks)
+    size = 3 * m + _N_FIELDS * n
     with _launch_lock:
-        d_tg = _buffer(dtype, "tg", m, 3)
-        d_seg = _buffer(dtype, "seg", n, _N_FIELDS)
-        d_out = _buffer(dtype, "out", m, 3)
-        d_tg[:m].copy_to_device(tg)
-        d_seg[:n].copy_to_device(seg)
-        blocks = (m + THREADS_PER_BLOCK - 1) // THREADS_PER_BLOCK
+        # one pinned staging buffer and one copy in, one copy out: on a wake's
+        # ~1e3 x 3e3 pairs each transfer costs more than the kernel itself
+        stage = _buffer(dtype, "stage", (size,), pinned=True)
+        tg = stage[:3 * m].reshape(m, 3)
+        seg = stage[3 * m:size].reshape(n, _N_FIELDS)
+        tg[:] = targets                 # target-independent terms in float64, then cast
+        seg[:, 0:3] = seg_a
+        seg[:, 3:6] = seg_b
+        seg[:, 6:9] = r0
+        seg[:, 9] = gamma / _FOUR_PI
+        seg[:, 10] = rcl * rcl
+        d_in = _buffer(dtype, "in", (size,))
+        d_part = _buffer(dtype, "part", (n_chunks, m, 3))
+        d_out = _buffer(dtype, "out", (m, 3))
+        host_out = _buffers[dtype].get("host_out")
+        if host_out is None or host_out.shape != d_out.shape:   # copy_to_host needs equal shapes
+            host_out = _buffers[dtype]["host_out"] = cuda.pinned_array(d_out.shape, dtype=dtype)
+        d_in[:size].copy_to_device(stage[:size])
+        grid = ((m + BLOCK[0] - 1) // BLOCK[0], (n_chunks + BLOCK[1] - 1) // BLOCK[1])
         with warnings.catch_warnings():   # small wakes under-fill the device: expected
             warnings.simplefilter("ignore", NumbaPerformanceWarning)
-            _kernel[blocks, THREADS_PER_BLOCK](d_tg, d_seg, d_out, m, n, dtype(1.0), dtype(_TINY))
-        out = d_out[:m].copy_to_host()
-    return out.astype(np.float64)
+            _chunk_kernel[grid, BLOCK](d_in, d_part, m, n, n_chunks, chunk, dtype(1.0),
+                                       dtype(_TINY))
+            _sum_kernel[(m + THREADS_PER_BLOCK - 1) // THREADS_PER_BLOCK, THREADS_PER_BLOCK](
+                d_part, d_out, m, n_chunks, dtype(1.0))
+        d_out.copy_to_host(host_out)    # the whole buffer: no device view to build
+        return host_out[:m].astype(np.float64)
 
 
 def segment_velocity(targets, seg_a, seg_b, gamma, rc, precision="double"):
