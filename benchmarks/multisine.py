@@ -48,7 +48,7 @@ PAIRS = [("lam0_U", "CT_U"), ("lam1s_U", "CL_U"), ("lam0_L", "CT_L"), ("lam1s_L"
 ROTORS = {
     "coaxial": ("coaxial_compound", "coaxial_6state", CT_SYSTEM, PAIRS),
     "single": ("uh60_single_rotor", "single_rotor_3state", 0.0061,
-               [("lam0", "CT"), ("lam1s", "CL"), ("lam1c", "CM"), ("lam1s", "CM")]),
+               [("lam0", "CT"), ("lam1s", "CL"), ("lam1c", "CM")]),
 }
 
 
