@@ -72,6 +72,21 @@ def test_parameter_counts_and_tied_partner_follow():
     assert G[2, col] == 0.5 and G[4, col_c] == -0.5
 
 
+@pytest.mark.parametrize("kwargs", [dict(without=("t52",)), dict(a_priori={"t52": 0.03}),
+                                    dict(without=("t41", "f1_7"), a_priori={"t52": 0.01})])
+def test_delays_held_or_removed_are_constants_of_the_model(kwargs):
+    # delays carry no tie sign: a removed one is zero, a held one its value, in the
+    # same model the unconstrained structure gives with those numbers
+    s = Coaxial12StateConstrained(**kwargs)
+    base = _base()
+    vals = _values(s.parameter_names(), seed=2)
+    full = {**vals, **s.a_priori, **{n: 0.0 for n in s.without}}
+    h0 = base.build(full, OMEGA).frequency_response(W)
+    h1 = s.build(vals, OMEGA).frequency_response(W)
+    np.testing.assert_allclose(h1, h0, rtol=1e-12, atol=1e-15)
+    assert not set(s.parameter_names()) & (set(s.a_priori) | set(s.without))
+
+
 def test_spec_and_registry():
     a = Coaxial12StateConstrained()
     b = Coaxial12StateConstrained(a_priori=PITT_PETERS_COLLECTIVE_GAIN)

@@ -133,6 +133,17 @@ class Coaxial12StateConstrained(Coaxial12State):
             return sign * self.a_priori[base]
         return name
 
+    def _tau_pattern(self):
+        """The delays' pattern with the removed ones zero and the held ones at their values."""
+        tau = super()._tau_pattern()
+        if tau is None:
+            return None
+        # delays carry no sign in the ties, so a name is the parameter itself; the
+        # base class asks before the constraints are set (then there are none)
+        without, held = getattr(self, "without", ()), getattr(self, "a_priori", {})
+        return [[(0 if n in without else held.get(n, n)) if isinstance(n, str) else n
+                 for n in row] for row in tau]
+
     def build(self, initial, omega, fixed=()):
         from flightid import FGCStructure
         F = [[0] * 12 for _ in range(12)]
