@@ -133,3 +133,29 @@ def test_input_delays_of_eq_2_15_versus_rowwise_delays_of_eq_2_16():
         mltau_statespace(P.M, P.L, P.tau, omega=P.omega, time="seconds", delays="input")
     with pytest.raises(InflowError, match="rowwise"):
         mltau_statespace(P.M, P.L, P.tau, omega=P.omega, time="seconds", delays="columns")
+
+
+def test_without_inputs_disconnects_exactly_those_paths():
+    # the printed 12-state (Eqs. 6.8-6.9, flap-rate inputs, delays by Padé): a
+    # disconnected input's responses vanish, every other response is python-control's
+    # own evaluation of the untouched model, and poles and trim references stay
+    model = IdentifiedInflow.from_published(published.COAXIAL_HOVER_12STATE)
+    cut = model.without_inputs(model.rate_names)
+    w = np.array([0.0, 0.5, 3.0, 20.0])
+    full = np.asarray(model.system(1j * w))
+    part = np.asarray(cut.system(1j * w))
+    inputs = list(model.system.input_labels)
+    for j, name in enumerate(inputs):
+        if name in model.rate_names:
+            assert np.all(part[:, j, :] == 0.0)
+        else:
+            np.testing.assert_allclose(part[:, j, :], full[:, j, :], rtol=1e-12, atol=0)
+    np.testing.assert_array_equal(np.asarray(cut.system.A), np.asarray(model.system.A))
+    np.testing.assert_array_equal(cut.loads_ref, model.loads_ref)
+    assert cut.uses_flap_rates and "without beta1s_dot_U" in cut.name
+    only_rates = model.without_inputs(model.load_names)
+    assert np.all(np.asarray(only_rates.system(1j * w))[:, :len(model.load_names), :] == 0.0)
+    with pytest.raises(InflowError, match="among the model's inputs"):
+        model.without_inputs(["CT_X"])
+    with pytest.raises(InflowError, match="among the model's inputs"):
+        model.without_inputs([])

@@ -123,3 +123,7 @@ def test_comparison_validation_and_plot():
     assert len(res.plot().axes) == 3
     flown = TwelveStateComparison(table.assign(Lp_real_0=[5.9, 1.1]))
     assert len(flown.plot().axes) == 4
+    paths = TwelveStateComparison(table.assign(Lp_real_0=[5.9, 1.1], Lp_real_0_load_path_only=[-16.1, -18.4],
+                                               Lp_real_0_flap_rate_path_only=[3.2, 3.6]))
+    ax = paths.plot().axes[-1]
+    assert len(ax.patches) == 6 and len(ax.get_legend().get_texts()) == 3

@@ -223,6 +223,9 @@ class TwelveStateComparison:
         (above the settings' bound), ``max_insensitivity_pct``, ``n_flat``,
         ``trusted``, ``Lp_real_0``/``Lp_real_1`` (effective roll damping of the
         trimmed hover aircraft at 0 and 1 rad/s [1/s], when flown),
+        ``Lp_real_0_load_path_only`` / ``Lp_real_0_flap_rate_path_only`` (the
+        same at 0 rad/s with the model's flap-rate inputs, then its loads,
+        disconnected: :meth:`~aircraft.inflow.IdentifiedInflow.without_inputs`),
         ``steady_ratio_<control>`` and ``quasi_steady_passes`` (model / wake steady
         on-axis inflow change after held steps, when checked), ``wall_s`` (the
         identification's).
@@ -239,7 +242,8 @@ class TwelveStateComparison:
     def plot(self, fig=None):
         """Bars per variant (numbered in table order): max CR % (log, the 20 % bound
         dashed), flat directions, J_ave, and Re L_p at 0 rad/s when flown (above
-        zero: no roll damping left below the fit band); a Figure."""
+        zero: no roll damping left below the fit band), beside the same with only
+        the load path and only the flap-rate path connected; a Figure."""
         from matplotlib.figure import Figure
         t = self.table
         panels = [("max_cramer_rao_pct", "max Cramér-Rao bound [%]"), ("n_flat", "flat directions"),
@@ -249,8 +253,18 @@ class TwelveStateComparison:
         fig = fig or Figure(figsize=(3.3 * len(panels), 3.6))
         axes = fig.subplots(1, len(panels))
         labels = [str(k + 1) for k in range(len(t))]
+        paths = [c for c in ("Lp_real_0_load_path_only", "Lp_real_0_flap_rate_path_only") if c in t]
         for ax, (col, title) in zip(axes, panels):
-            ax.bar(labels, t[col].astype(float))
+            if col == "Lp_real_0" and paths:
+                # the whole model beside each of its paths alone
+                x = np.arange(len(t))
+                for k, (c, name) in enumerate(zip([col] + paths, ["model", "load path only",
+                                                                  "flap-rate path only"])):
+                    ax.bar(x + (k - 1) * 0.27, t[c].astype(float), width=0.27, label=name)
+                ax.set_xticks(x, labels)
+                ax.legend(fontsize=7)
+            else:
+                ax.bar(labels, t[col].astype(float))
             ax.set_title(title)
             ax.set_xlabel("variant")
         axes[0].set_yscale("log")
@@ -344,8 +358,20 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
 
 
 def _roll_damping(model):
+    """Effective roll damping Re L_p [1/s] of the hover aircraft flying ``model``: at 0
+    and 1 rad/s, and at 0 rad/s with each of its input paths alone (the flap-rate
+    inputs disconnected, then the loads), which says which path takes it away."""
+    inflow = model.to_inflow()
+    out = _lp(inflow, [0.0, 1.0])
+    row = {"Lp_real_0": out[0], "Lp_real_1": out[1]}
+    if inflow.uses_flap_rates:
+        row["Lp_real_0_load_path_only"] = _lp(inflow.without_inputs(inflow.rate_names), [0.0])[0]
+        row["Lp_real_0_flap_rate_path_only"] = _lp(inflow.without_inputs(inflow.load_names), [0.0])[0]
+    return row
+
+
+def _lp(inflow, omega):
     from aircraft.configs import coaxial_compound
     from aircraft.helicopter import Helicopter, HelicopterSettings, effective_derivative, linearize, trim
-    tr = trim(Helicopter(coaxial_compound(), model.to_inflow(), HelicopterSettings(n_span=8, n_average=1)))
-    lp = effective_derivative(linearize(tr), "p", "p", [0.0, 1.0])
-    return {"Lp_real_0": float(lp[0].real), "Lp_real_1": float(lp[1].real)}
+    tr = trim(Helicopter(coaxial_compound(), inflow, HelicopterSettings(n_span=8, n_average=1)))
+    return [float(v.real) for v in effective_derivative(linearize(tr), "p", "p", omega)]
