@@ -139,8 +139,9 @@ def test_without_inputs_disconnects_exactly_those_paths():
     # the printed 12-state (Eqs. 6.8-6.9, flap-rate inputs, delays by Padé): a
     # disconnected input's responses vanish, every other response is python-control's
     # own evaluation of the untouched model, and poles and trim references stay
+    from aircraft.inflow.paths import without_inputs
     model = IdentifiedInflow.from_published(published.COAXIAL_HOVER_12STATE)
-    cut = model.without_inputs(model.rate_names)
+    cut = without_inputs(model, model.rate_names)
     w = np.array([0.0, 0.5, 3.0, 20.0])
     full = np.asarray(model.system(1j * w))
     part = np.asarray(cut.system(1j * w))
@@ -153,9 +154,11 @@ def test_without_inputs_disconnects_exactly_those_paths():
     np.testing.assert_array_equal(np.asarray(cut.system.A), np.asarray(model.system.A))
     np.testing.assert_array_equal(cut.loads_ref, model.loads_ref)
     assert cut.uses_flap_rates and "without beta1s_dot_U" in cut.name
-    only_rates = model.without_inputs(model.load_names)
+    only_rates = without_inputs(model, model.load_names)
     assert np.all(np.asarray(only_rates.system(1j * w))[:, :len(model.load_names), :] == 0.0)
     with pytest.raises(InflowError, match="among the model's inputs"):
-        model.without_inputs(["CT_X"])
+        without_inputs(model, ["CT_X"])
     with pytest.raises(InflowError, match="among the model's inputs"):
-        model.without_inputs([])
+        without_inputs(model, [])
+    with pytest.raises(TypeError, match="must be an IdentifiedInflow"):
+        without_inputs(PittPeters(), ["CT"])

@@ -225,7 +225,7 @@ class TwelveStateComparison:
         trimmed hover aircraft at 0 and 1 rad/s [1/s], when flown),
         ``Lp_real_0_load_path_only`` / ``Lp_real_0_flap_rate_path_only`` (the
         same at 0 rad/s with the model's flap-rate inputs, then its loads,
-        disconnected: :meth:`~aircraft.inflow.IdentifiedInflow.without_inputs`),
+        disconnected: :func:`aircraft.inflow.paths.without_inputs`),
         ``steady_ratio_<control>`` and ``quasi_steady_passes`` (model / wake steady
         on-axis inflow change after held steps, when checked), ``wall_s`` (the
         identification's).
@@ -361,12 +361,13 @@ def _roll_damping(model):
     """Effective roll damping Re L_p [1/s] of the hover aircraft flying ``model``: at 0
     and 1 rad/s, and at 0 rad/s with each of its input paths alone (the flap-rate
     inputs disconnected, then the loads), which says which path takes it away."""
+    from aircraft.inflow.paths import without_inputs
     inflow = model.to_inflow()
     out = _lp(inflow, [0.0, 1.0])
     row = {"Lp_real_0": out[0], "Lp_real_1": out[1]}
     if inflow.uses_flap_rates:
-        row["Lp_real_0_load_path_only"] = _lp(inflow.without_inputs(inflow.rate_names), [0.0])[0]
-        row["Lp_real_0_flap_rate_path_only"] = _lp(inflow.without_inputs(inflow.load_names), [0.0])[0]
+        row["Lp_real_0_load_path_only"] = _lp(without_inputs(inflow, inflow.rate_names), [0.0])[0]
+        row["Lp_real_0_flap_rate_path_only"] = _lp(without_inputs(inflow, inflow.load_names), [0.0])[0]
     return row
 
 

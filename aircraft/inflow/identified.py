@@ -259,44 +259,6 @@ class IdentifiedInflow(InflowModel):
         sys.trim_outputs = self.inflow(x0, loads, ops)
         return sys
 
-    def without_inputs(self, names):
-        """The same model with the named inputs disconnected: a diagnostic of its paths.
-
-        Their columns of ``B`` are set to zero, so the inflow no longer answers
-        them; everything else (states, poles, the other inputs' responses, the trim
-        references) is unchanged. E.g. ``model.without_inputs(model.rate_names)``
-        keeps only the load path, to see what the flap-rate (wake-curvature) path
-        does to the aircraft.
-
-        Parameters
-        ----------
-        names : str or sequence of str
-            Input names of this model (loads ``CT_U``, ... or flap rates
-            ``beta1s_dot_U``, ...).
-
-        Returns
-        -------
-        IdentifiedInflow
-            A new model named ``"<name> without <inputs>"``.
-
-        Raises
-        ------
-        InflowError
-            An empty list, or a name that is not one of this model's inputs.
-        """
-        names = [names] if isinstance(names, str) else list(names)
-        inputs = list(self.system.input_labels)
-        unknown = [n for n in names if n not in inputs]
-        if not names or unknown:
-            raise InflowError(f"without_inputs needs names among the model's inputs {inputs}, got {names}")
-        B = np.array(self.system.B, dtype=float)
-        B[:, [inputs.index(n) for n in names]] = 0.0
-        label = f"{self.name} without {', '.join(names)}"
-        sys = control.ss(self.system.A, B, self.system.C, self.system.D, inputs=inputs,
-                         outputs=list(self.system.output_labels), states=list(self.system.state_labels),
-                         name=_sysname(label))
-        return IdentifiedInflow(sys, self.rotors, self.loads_ref.copy(), self.inflow_ref.copy(), name=label)
-
     # -- constructors -----------------------------------------------------------
     @classmethod
     def from_matrices(cls, M, L, tau=None, *, omega, rotors=("U", "L"), time="azimuth", loads_ref=None,
