@@ -485,6 +485,15 @@ def _changed_sources(manifest, root):
     return changed, documentation
 
 
+def _readable_manifests(results_root):
+    """(folder, manifest) of each results folder whose manifest reads (others are skipped)."""
+    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
+        try:
+            yield folder, read_manifest(folder)
+        except ResultsManifestError:
+            continue
+
+
 def upgrade_manifests(results_root="results", root=None):
     """Add code digests to the schema-1 manifests whose modules are byte-identical now.
 
@@ -507,11 +516,7 @@ def upgrade_manifests(results_root="results", root=None):
     """
     root = Path(root) if root is not None else _project_root()
     upgraded = []
-    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
-        try:
-            manifest = read_manifest(folder)
-        except ResultsManifestError:
-            continue
+    for folder, manifest in _readable_manifests(results_root):
         if manifest["schema"] != 1:
             continue
         if any(not (root / rel).is_file() or file_sha256(root / rel) != digest
@@ -562,11 +567,7 @@ def record_kernel_backend(results_root="results", backend="cpu", root=None):
         raise ValueError(f"backend must be 'cpu' or 'gpu', got {backend!r}")
     root = Path(root) if root is not None else _project_root()
     marked = []
-    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
-        try:
-            manifest = read_manifest(folder)
-        except ResultsManifestError:
-            continue
+    for folder, manifest in _readable_manifests(results_root):
         if "kernel_backend" in manifest.get("machine", {}):
             continue
         attested = {**manifest, "machine": {**manifest.get("machine", {}), "kernel_backend": backend}}
