@@ -116,6 +116,9 @@ def test_comparison_validation_and_plot():
         compare_twelve_state_variants({})
     with pytest.raises(TypeError, match="IdentificationSettings"):
         compare_twelve_state_variants(settings={"sweep_s": 10})
+    # references are checked before any wake run
+    with pytest.raises(TypeError, match="reference 'x' must be an IdentifiedInflow"):
+        compare_twelve_state_variants(references={"x": 3.0})
     table = pd.DataFrame({"variant": ["a", "b"], "max_cramer_rao_pct": [999.0, 31.0], "n_flat": [4, 0],
                           "J_ave": [42.0, 52.0]})
     res = TwelveStateComparison(table)
@@ -127,3 +130,21 @@ def test_comparison_validation_and_plot():
                                                Lp_real_0_flap_rate_path_only=[3.2, 3.6]))
     ax = paths.plot().axes[-1]
     assert len(ax.patches) == 6 and len(ax.get_legend().get_texts()) == 3
+
+
+def test_steady_curvature_gain_is_the_K_R_of_eq_2_29():
+    # a hand-built F/G/C model whose DC answer is lambda1s_r = -K_R,r beta1s_dot_r / Omega
+    # on each rotor (Eq. 2.29 at zero frequency): the reported equivalent K_R is K_R
+    from aircraft.configs import coaxial_compound
+    from aircraft.inflow import IdentifiedInflow
+    from aircraft.inflow.base import flap_rate_names, load_names
+    from aircraft.identification.twelve_state_variants import _steady_curvature
+    omega = float(coaxial_compound().rotors[0].omega)
+    order = load_names(("U", "L")) + flap_rate_names(("U", "L"))
+    F, G = -2.0 * np.eye(12), np.zeros((12, len(order)))
+    for row, rotor, kr in ((2, "U", 1.5), (8, "L", 0.7)):      # lam1sN of each rotor
+        G[row, order.index(f"beta1s_dot_{rotor}")] = 2.0 * (-kr / omega)
+        G[row, order.index(f"CL_{rotor}")] = 1.0                  # a load path it must ignore
+    model = IdentifiedInflow.from_fgc(F, G, input_order=order)
+    got = _steady_curvature(model)
+    assert got == pytest.approx({"KR_equivalent_steady_U": 1.5, "KR_equivalent_steady_L": 0.7}, rel=1e-12)

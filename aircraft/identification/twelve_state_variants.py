@@ -226,6 +226,8 @@ class TwelveStateComparison:
         ``Lp_real_0_load_path_only`` / ``Lp_real_0_flap_rate_path_only`` (the
         same at 0 rad/s with the model's flap-rate inputs, then its loads,
         disconnected: :func:`aircraft.inflow.paths.without_inputs`),
+        ``KR_equivalent_steady_U`` / ``_L`` (each rotor's steady on-axis lambda1s
+        answer to a tip-path-plane rate as the K_R of Eq. 2.29 it amounts to),
         ``steady_ratio_<control>`` and ``quasi_steady_passes`` (model / wake steady
         on-axis inflow change after held steps, when checked), ``wall_s`` (the
         identification's).
@@ -277,7 +279,7 @@ class TwelveStateComparison:
 
 def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settings=None, fly=True,
                                   quasi_steady=True, hold_s=10.0, window=(6.0, 10.0), n_jobs=2,
-                                  cache_dir="default", progress=True):
+                                  cache_dir="default", progress=True, references=None):
     """Identify each constrained 12-state structure from the same coaxial hover wake data.
 
     Parameters
@@ -306,6 +308,10 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
     n_jobs, cache_dir, progress :
         As :func:`~aircraft.identification.identify_inflow` (the wake runs are the
         same for every variant: one data set, cached after the first).
+    references : mapping of str to IdentifiedInflow or str, optional
+        Models flown beside the variants for their roll damping only (a shipped
+        model's name, e.g. ``"published_eq6_8_6_9"``, or an inflow model): rows
+        with the ``Lp_*`` columns and nothing fitted. Only with ``fly``.
 
     Returns
     -------
@@ -324,6 +330,7 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
     variants = dict(VARIANTS if variants is None else variants)
     if not variants:
         raise ValueError("variants is empty: give at least one label -> keyword arguments")
+    references = _references(references) if fly else {}
     rows, models = [], {}
     for label, kwargs in variants.items():
         structure = Coaxial12StateConstrained(**kwargs)
@@ -354,21 +361,59 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
             row["quasi_steady_passes"] = check.passes()
         rows.append(row)
         models[label] = model
+    for label, inflow in references.items():
+        rows.append({"variant": label, **_roll_damping_of(inflow)})
     return TwelveStateComparison(pd.DataFrame(rows), models)
+
+
+def _references(references):
+    """{label: IdentifiedInflow} from labels to inflow models or shipped models' names."""
+    from aircraft.inflow import IdentifiedInflow
+    out = {}
+    for label, inflow in dict(references or {}).items():
+        if isinstance(inflow, str):
+            inflow = IdentifiedInflow.from_file(inflow)
+        if not isinstance(inflow, IdentifiedInflow):
+            raise TypeError(f"reference {label!r} must be an IdentifiedInflow or a shipped model's name, "
+                            f"got {type(inflow).__name__}")
+        out[label] = inflow
+    return out
 
 
 def _roll_damping(model):
     """Effective roll damping Re L_p [1/s] of the hover aircraft flying ``model``: at 0
     and 1 rad/s, and at 0 rad/s with each of its input paths alone (the flap-rate
     inputs disconnected, then the loads), which says which path takes it away."""
+    return _roll_damping_of(model.to_inflow())
+
+
+def _roll_damping_of(inflow):
     from aircraft.inflow.paths import without_inputs
-    inflow = model.to_inflow()
     out = _lp(inflow, [0.0, 1.0])
     row = {"Lp_real_0": out[0], "Lp_real_1": out[1]}
     if inflow.uses_flap_rates:
         row["Lp_real_0_load_path_only"] = _lp(without_inputs(inflow, inflow.rate_names), [0.0])[0]
         row["Lp_real_0_flap_rate_path_only"] = _lp(without_inputs(inflow, inflow.load_names), [0.0])[0]
+        row.update(_steady_curvature(inflow))
     return row
+
+
+def _steady_curvature(inflow):
+    """Each rotor's steady on-axis wake-curvature gain as an equivalent K_R [-].
+
+    Eq. 2.29 at zero frequency gives ``lambda1s = -K_R * beta1s_dot / Omega`` for the
+    full tip-path-plane rate (body rate included) that the aircraft feeds the flap-
+    rate inputs, so ``-Omega`` times the model's DC gain lambda1s_r / beta1s_dot_r is
+    the K_R it acts with in a steady roll (analytical 1.5, the dissertation's
+    identified 1.44)."""
+    import control
+    from aircraft.configs import coaxial_compound
+    omega = float(coaxial_compound().rotors[0].omega)
+    sys = inflow.system
+    gain = np.real(np.asarray(control.dcgain(sys)))
+    outs, ins = list(sys.output_labels), list(sys.input_labels)
+    return {f"KR_equivalent_steady_{r}": -omega * float(gain[outs.index(f"lam1s_{r}"), ins.index(f"beta1s_dot_{r}")])
+            for r in inflow.rotors}
 
 
 def _lp(inflow, omega):
