@@ -18,9 +18,10 @@ dissertation's §7.5 flew), identified from our own free-vortex wake and shipped
 ``aircraft/data/models/coaxial_hover_12state.json``. Further rows fly our 6-state
 model (``coaxial_hover_6state``), our 6-state with every coupling hover's
 axisymmetry allows and the collective apparent masses held at Pitt-Peters'
-(``coaxial_hover_6state_axisymmetric``) and the dissertation's printed Eq. 5.3 model
-(converted to our rotor frames by :func:`aircraft.inflow.published.in_rotor_frames`)
-the same way: (B) the DC design on that aircraft, (C) a design optimised on it.
+(``coaxial_hover_6state_axisymmetric``) and the dissertation's printed Eq. 5.3 and
+Eq. 6.8-6.9 models (converted to our rotor frames by
+:func:`aircraft.inflow.published.in_rotor_frames`; the 12-state from its shipped file
+``published_eq6_8_6_9``) the same way: (B) the DC design on that aircraft, (C) a design optimised on it.
 ``--identified published`` puts Eq. 5.3 in cases B/C instead (the former default);
 ``--regenerate`` rebuilds our three shipped models from the free wake first (about 55
 minutes on 2 cores uncached; progress shown, wake runs cached).
@@ -67,6 +68,10 @@ DISSERTATION_74 = {"K_p": (0.0413, 0.0413, 0.0326), "K_phi": (0.303, 0.303, 0.58
 DISSERTATION_75 = {"crossover_rad_s": (3.53, 3.47, 5.38), "GM_dB": (7.2, 6.25, 6.00),
                    "PM_deg": (45.0, 73.0, 47.7), "min_zeta_4_20": (0.1048, 0.148, 0.193),
                    "DRB_rad_s": (1.89, 1.97, 2.91), "DRP_dB": (4.38, 2.35, 4.87)}
+
+
+#: inflow keys of the printed models flown as comparison rows (never in case D)
+PRINTED = ("Eq. 5.3", "Eq. 6.8-6.9")
 
 
 def roll_plant(inflow, settings):
@@ -258,7 +263,9 @@ def main(argv=None):
         from aircraft.identification import load_record
         inflows = {"ID": IdentifiedInflow.from_file("coaxial_hover_12state"),
                    "ID6": IdentifiedInflow.from_file("coaxial_hover_6state"),
-                   "IDA": IdentifiedInflow.from_file("coaxial_hover_6state_axisymmetric"), "Eq. 5.3": published6}
+                   "IDA": IdentifiedInflow.from_file("coaxial_hover_6state_axisymmetric"), "Eq. 5.3": published6,
+                   # the 12-state the dissertation's §7.5 flew, in our rotor frames (shipped file)
+                   "Eq. 6.8-6.9": IdentifiedInflow.from_file("published_eq6_8_6_9")}
         for key, name in (("ID", "coaxial_hover_12state"), ("ID6", "coaxial_hover_6state"),
                           ("IDA", "coaxial_hover_6state_axisymmetric")):
             rec = load_record(name)
@@ -269,7 +276,8 @@ def main(argv=None):
     else:
         inflows = {"ID": published6}
     labels = {"ID": "our 12-state" if args.identified == "ours" else "Eq. 5.3", "ID6": "our 6-state",
-              "IDA": "our axisymmetric 6-state", "Eq. 5.3": "Eq. 5.3 (printed)"}
+              "IDA": "our axisymmetric 6-state", "Eq. 5.3": "Eq. 5.3 (printed)",
+              "Eq. 6.8-6.9": "Eq. 6.8-6.9 (printed)"}
     print("[stage 2] trim + linearise the coaxial in hover with each inflow model")
     plant_dc, sys_dc, tr_dc = roll_plant(DynamicClimb(), settings)
     plants, systems = {"DC": plant_dc}, {"DC": sys_dc}
@@ -311,10 +319,10 @@ def main(argv=None):
     res_c = results["ID"]
     # case D: one gain set for the DC aircraft and every identified aircraft of ours
     # that has a design of its own (case C feasible): where not even a design for that
-    # aircraft alone meets every spec, no robust one can. The printed Eq. 5.3 is a
-    # comparison row, not one of ours. The feed-forward (inverse plant, tau_eq) is the
+    # aircraft alone meets every spec, no robust one can. The printed Eq. 5.3 and
+    # Eq. 6.8-6.9 are comparison rows, not ours. The feed-forward (inverse plant, tau_eq) is the
     # first such case C's, as one controller would fly.
-    ours = [k for k in inflows if k != "Eq. 5.3"]
+    ours = [k for k in inflows if k not in PRINTED]
     robust_keys = [k for k in ours if results[k] is not None]
     skipped = [labels[k] for k in ours if results[k] is None]
     robust_plants = {"DC": plant_dc, **{labels[k]: plants[k] for k in robust_keys}}
@@ -351,7 +359,7 @@ def main(argv=None):
                  (f"(B) DC on {labels['ID']}", res_a.design.with_plant(plants["ID"]), "ID", 1)]
     if res_c is not None:
         rows_spec.append((f"(C) {labels['ID']} on {labels['ID']}", res_c.design, "ID", 2))
-    for key in ("ID6", "IDA", "Eq. 5.3"):
+    for key in ("ID6", "IDA") + PRINTED:
         if key in inflows:
             rows_spec.append((f"(B) DC on {labels[key]}", res_a.design.with_plant(plants[key]), key, None))
             if results[key] is not None:
@@ -382,7 +390,7 @@ def main(argv=None):
     t74 = pd.DataFrame({"parameter": ["K_p", "K_phi", "K_Iphi", "tau_eq"],
                         "ours (A)&(B)": gains(res_a.design),
                         f"ours (C) {labels['ID']}": gains(res_c.design) if res_c is not None else [np.nan] * 4,
-                        **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID6", "IDA", "Eq. 5.3")
+                        **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID6", "IDA") + PRINTED
                            if k in results and results[k] is not None},
                         "ours (D) robust": gains(res_d.design) if res_d is not None else [np.nan] * 4,
                         "dissertation (A)&(B)": [DISSERTATION_74[k][0] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")],
