@@ -36,7 +36,9 @@ Stage 1 also runs the identification pipeline end to end on an embedded truth
 
 The effective roll damping and control power of every aircraft against frequency
 (``roll_derivatives.csv``/``.png``) show where the identified inflow models act
-outside the band they were fitted on.
+outside the band they were fitted on; ``slow_zeros.csv`` lists each roll plant's
+zeros below 2 rad/s (a right-half-plane one there makes every design with
+integral action infeasible).
 
 Writes tables (CSV) and figures (PNG) under ``results/hover_control_comparison/``
 and prints Tables 7.4/7.5-style summaries with the dissertation's values in
@@ -49,6 +51,7 @@ import argparse
 import time
 from pathlib import Path
 
+import control
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
@@ -79,6 +82,16 @@ def roll_plant(inflow, settings):
     tr = trim(Helicopter(coaxial_compound(), inflow, settings))
     sys = linearize(tr)
     return roll_design_plant(sys), sys, tr
+
+
+def slow_zeros(plants, limit=2.0):
+    """Zeros of each roll plant's rational part with |s| < ``limit`` [rad/s], one row each."""
+    rows = []
+    for name, plant in plants.items():
+        for z in np.sort_complex(np.asarray(control.zeros(plant.system), dtype=complex)):
+            if abs(z) < limit:
+                rows.append({"aircraft": name, "real_1_s": float(z.real), "imag_rad_s": float(z.imag)})
+    return pd.DataFrame(rows, columns=["aircraft", "real_1_s", "imag_rad_s"])
 
 
 def characteristics(design, specs):
@@ -293,6 +306,14 @@ def main(argv=None):
     derivs = roll_derivatives({("Dynamic Climb" if k == "DC" else labels[k]): systems[k] for k in systems})
     derivs.to_csv(out / "roll_derivatives.csv", index=False)
     derivative_figure(derivs).savefig(out / "roll_derivatives.png", dpi=80)
+    # a non-minimum-phase zero below crossover traps a closed-loop pole of any design
+    # with integral action (EigLcG1 fails by about the zero): list each plant's slow ones
+    slow = slow_zeros({("Dynamic Climb" if k == "DC" else labels[k]): plants[k] for k in plants})
+    slow.to_csv(out / "slow_zeros.csv", index=False)
+    rhp = slow[slow.real_1_s > 0]
+    print("slow right-half-plane zeros of the roll plants p/delta_lat (|s| < 2 rad/s): "
+          + ("; ".join(f"{r.aircraft} {r.real_1_s:+.3g}{r.imag_rad_s:+.3g}j" for r in rhp.itertuples())
+             or "none"))
     print(derivs[derivs.omega_rad_s.isin([0.0, 1.0])].pivot(index="aircraft", columns="omega_rad_s",
                                                               values="Lp_real_1_s")
           .rename(columns=lambda w: f"Re L_p at {w:g} rad/s [1/s]").to_string(float_format="%.2f"))
