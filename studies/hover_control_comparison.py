@@ -37,8 +37,8 @@ Stage 1 also runs the identification pipeline end to end on an embedded truth
 The effective roll damping and control power of every aircraft against frequency
 (``roll_derivatives.csv``/``.png``) show where the identified inflow models act
 outside the band they were fitted on; ``slow_zeros.csv`` lists each roll plant's
-zeros below 2 rad/s (a right-half-plane one there makes every design with
-integral action infeasible).
+zeros below 2 rad/s (a right-half-plane one there traps a closed-loop pole of a
+design with integral action).
 
 Writes tables (CSV) and figures (PNG) under ``results/hover_control_comparison/``
 and prints Tables 7.4/7.5-style summaries with the dissertation's values in
