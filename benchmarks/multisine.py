@@ -180,7 +180,8 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
     structure = get_structure(structure_key)
     n_sweeps = len(structure.controls)
     label = _sweeps_label(n_sweeps)
-    model_label = label.replace(" sweeps", "-sweep model")      # "six-sweep model"
+    experiment = label.replace(" sweeps", "-sweep")               # "six-sweep"
+    model_label = f"{experiment} model"
     # default: the resolution of the shipped coaxial models (its six sweeps are the
     # first six records of the 12-state data set, so they come from the wake cache)
     wake = (WakeSettings() if wake_name == "default"
@@ -233,7 +234,7 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
     same = _same_structure(model_a, model_b, settings)
     cmp_same = _compare(model_a.parameters, same.parameters, settings.cramer_rao_max)
     well_same = cmp_same[cmp_same.well_identified]
-    print(f"\nsame structure (multisine data, the {model_label[:-6]} reduction's free set): J_ave {same.J_ave:.1f}; "
+    print(f"\nsame structure (multisine data, the {experiment} reduction's free set): J_ave {same.J_ave:.1f}; "
           f"{len(well_same)} well identified, largest difference {well_same.diff_pct.abs().max():.2f} %, "
           f"{int((well_same.diff_pct.abs() < 5).sum())} of {len(well_same)} within 5 %")
     sa, sb = model_a.fit.structure, model_b.fit.structure
@@ -241,7 +242,7 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
         {"model": m, "data": d, "J_ave_native_points": _cost_on(st, resp, model_a.cost_table)}
         for m, st in ((model_label, sa), ("multisine model", sb))
         for d, resp in ((label, model_a.responses), ("multisine", model_b.responses))])
-    print(f"cross costs (each model on each experiment's lambda/C, the {model_label[:-6]} pairs and bands):")
+    print(f"cross costs (each model on each experiment's lambda/C, the {experiment} pairs and bands):")
     print(cross.to_string(index=False, float_format=lambda v: f"{v:.1f}"))
     diff = _data_difference(model_a, model_b, settings) if np.array_equal(
         model_a.responses.omega, model_b.responses.omega) else pd.DataFrame()
@@ -256,7 +257,7 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
                                                      for b, r in by_band.iterrows()))
     weights = _weighting(model_a, model_b, settings, label)
     if len(weights):
-        print(f"\nweighting (the {model_label[:-6]} structure refitted from its optimum; M and Lbar differences "
+        print(f"\nweighting (the {experiment} structure refitted from its optimum; M and Lbar differences "
               "from it):")
         print(weights[["data", "coherence_weights", "J_ave", "max_abs_diff_pct_M_Lbar", "worst_parameter"]]
               .to_string(index=False, float_format=lambda v: f"{v:.1f}"))

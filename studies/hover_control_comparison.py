@@ -299,16 +299,17 @@ def main(argv=None):
         plants[key], systems[key], tr = roll_plant(inflow, settings)
         print(f"  {key} ({labels[key]}): trim residual {tr.max_residual:.1e}, "
               f"C_T U/L = {tr.loads['CT_U']:.5f}/{tr.loads['CT_L']:.5f}")
-    pd.concat([modes(systems[k]).assign(aircraft=("Dynamic Climb" if k == "DC" else labels[k])) for k in systems]) \
+    aircraft_name = {k: ("Dynamic Climb" if k == "DC" else labels[k]) for k in systems}
+    pd.concat([modes(systems[k]).assign(aircraft=aircraft_name[k]) for k in systems]) \
         .to_csv(out / "aircraft_modes.csv", index=False)
     # where each inflow model changes the roll damping and control power: the
     # identified models are fitted on 1-25 rad/s, and what they do below is extrapolation
-    derivs = roll_derivatives({("Dynamic Climb" if k == "DC" else labels[k]): systems[k] for k in systems})
+    derivs = roll_derivatives({aircraft_name[k]: systems[k] for k in systems})
     derivs.to_csv(out / "roll_derivatives.csv", index=False)
     derivative_figure(derivs).savefig(out / "roll_derivatives.png", dpi=80)
     # a non-minimum-phase zero below crossover traps a closed-loop pole of any design
     # with integral action (EigLcG1 fails by about the zero): list each plant's slow ones
-    slow = slow_zeros({("Dynamic Climb" if k == "DC" else labels[k]): plants[k] for k in plants})
+    slow = slow_zeros({aircraft_name[k]: plants[k] for k in plants})
     slow.to_csv(out / "slow_zeros.csv", index=False)
     rhp = slow[slow.real_1_s > 0]
     print("slow right-half-plane zeros of the roll plants p/delta_lat (|s| < 2 rad/s): "
