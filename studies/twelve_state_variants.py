@@ -9,8 +9,14 @@ the effective roll damping of the hover aircraft flying it
 (:func:`aircraft.identification.twelve_state_variants.compare_twelve_state_variants`).
 
 The printed Eq. 6.8-6.9 model (our frames) is flown beside them as a reference row.
+Then the wake's own steady gains (:func:`aircraft.identification.steady_gains.wake_steady_gains`:
+held swashplate steps, flap-rate ramps, held tilts; cached records) are estimated and
+each model is driven by those records' loads and flap rates.
 Writes ``results/twelve_state_variants/``: ``table.csv``, ``parameters.csv`` (every
-variant's parameters, CR and insensitivity), ``cost_tables.csv``, ``variants.png``.
+variant's parameters, CR and insensitivity), ``cost_tables.csv``, ``variants.png``;
+``steady_gains.csv`` (the wake's G_C, G_R, G_T, long), ``steady_observations.csv`` (each
+record window's changes), ``steady_compare.csv`` (per model, record window and on-axis
+output: wake and model change), ``steady_gains.png``.
 
 Run: ``rotorwake twelve-state-variants``. It has no small configuration: on a tiny wake
 (20 deg steps, 1.5 revolutions, 12 s sweeps) the lambda/beta_dot responses carry no
@@ -24,6 +30,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from aircraft.identification.steady_gains import wake_steady_gains
 from aircraft.identification.twelve_state_variants import VARIANTS, compare_twelve_state_variants
 
 REFERENCE = "Eq. 6.8-6.9 printed, our frames (reference: flown only)"
@@ -49,8 +56,40 @@ def run(out_dir="results/twelve_state_variants", n_jobs=2):
     for k, m in result.models.items():
         fails = m.trust_failures()
         print(f"{k}: {'trusted' if not fails else 'NOT trusted: ' + ' | '.join(fails)}")
-    print(f"tables and figure in {out}/")
+    steady_gains(result, out, n_jobs=n_jobs)
+    print(f"tables and figures in {out}/")
     return table
+
+
+def steady_gains(result, out, n_jobs=2):
+    """The wake's steady gains on the variants' recipe, and each model against its records."""
+    from aircraft.configs import coaxial_compound
+    from aircraft.identification.regenerate import RECIPES
+    from aircraft.inflow import IdentifiedInflow
+    recipe = RECIPES["coaxial_hover_12state"]
+    gains = wake_steady_gains(coaxial_compound(), recipe.ct, settings=recipe.settings, n_jobs=n_jobs, progress=True)
+    gains.to_pandas().to_csv(out / "steady_gains.csv", index=False)
+    gains.changes.to_csv(out / "steady_observations.csv")
+    models = {**{k: m for k, m in result.models.items()},
+              "shipped coaxial_hover_12state": IdentifiedInflow.from_file("coaxial_hover_12state"),
+              REFERENCE: IdentifiedInflow.from_file("published_eq6_8_6_9")}
+    compare = pd.concat([gains.compare(m).assign(model=k) for k, m in models.items()], ignore_index=True)
+    compare.to_csv(out / "steady_compare.csv", index=False)
+    last = list(result.models)[-1]
+    gains.plot(models={f"variant {len(result.models)}": result.models[last], "Eq. 6.8-6.9 printed": models[REFERENCE]}) \
+        .savefig(out / "steady_gains.png", dpi=90)
+    blind = gains.rate_only()
+    print(f"wake's steady gains ({gains.wall_s:.0f} s; regressor condition number {gains.condition_number:.3g}):")
+    print("  equivalent steady K_R (Eq. 2.29 at 0 rad/s), with the tilt input: "
+          + ", ".join(f"{r} {v:.2f}" for r, v in gains.equivalent_kr.items())
+          + "; rate only (tilt read as rate): " + ", ".join(f"{r} {v:.2f}" for r, v in blind.equivalent_kr.items()))
+    on = [f"{o}/{i} {g:+.3f}" for o in gains.tilt_gain.index for i, g in gains.tilt_gain.loc[o].items()
+          if o.partition("_")[2] == i.partition("_")[2] and o[3:5] == i[4:6]]
+    print("  on-axis tilt gains [1/rad]: " + ", ".join(on))
+    wide = compare.pivot_table(index=["record", "window", "output"], columns="model", values="ratio", sort=False)
+    print("  model / wake, on-axis steady change per record window:")
+    print(wide.rename(columns=lambda c: c[:28]).to_string(float_format=lambda v: f"{v:.3g}"))
+    return gains
 
 
 def main(argv=None):

@@ -37,6 +37,10 @@
                    compare_twelve_state_variants on one data set. Import it from the
                    module (not re-exported yet: adding it here would mark every committed
                    result stale until the next full regeneration)
+    steady_gains.py  wake_steady_gains: the wake's steady gains per load, flap rate and
+                   tip-path-plane tilt from held steps, ramps and held tilts; SteadyGains
+                   (.equivalent_kr, .compare(model), .plot()). Import it from the module
+                   (same reason)
 
 The wake (numba) is imported only when a pipeline runs.
 """
