@@ -185,3 +185,31 @@ def test_wake_ramp_window_must_lie_within_the_ramp():
         wake_steady_gains(coaxial_compound(), 0.0096, ramp_window=(4.5, 9.5))
     with pytest.raises(SteadyGainsError, match="tilt_window .* after the ramp ends"):
         wake_steady_gains(coaxial_compound(), 0.0096, tilt_window=(8.0, 12.0))
+
+
+def test_wake_records_on_a_tiny_single_rotor_wake():
+    # the wake glue end to end (names, the single rotor's unsuffixed signals, windows,
+    # compare with a shipped model) on a coarse wake and short records; ~20 s
+    import math
+    from aircraft.configs import uh60_single_rotor
+    from aircraft.identification import IdentificationSettings
+    from aircraft.identification.steady_gains import wake_steady_gains
+    from aircraft.inflow import IdentifiedInflow
+    from aircraft.wake import WakeSettings
+    settings = IdentificationSettings(wake=WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5,
+                                                        far_wake_revolutions=2.0, n_elements=5))
+    g = wake_steady_gains(uh60_single_rotor(), 0.0061, settings=settings, step_window=(2.5, 4.0),
+                          ramp_window=(1.5, 2.5), tilt_window=(3.2, 4.0), hold_s=4.0, ramp_s=2.5,
+                          ramp_hold_s=4.0, cache_dir=None, progress=False, n_jobs=1)
+    assert list(g.loads_gain.columns) == ["CT", "CL", "CM"]
+    assert list(g.rate_gain.columns) == ["beta1s_dot", "beta1c_dot"]
+    assert list(g.tilt_gain.columns) == ["beta1s", "beta1c"]
+    assert len(g.changes) == 7 and np.isfinite(g.condition_number)
+    # 7 observations, 7 inputs: the estimate reproduces every observation exactly
+    X = g.changes[["CT", "CL", "CM", "beta1s_dot", "beta1c_dot", "beta1s", "beta1c"]].to_numpy().T
+    G = np.hstack([g.loads_gain, g.rate_gain, g.tilt_gain])
+    np.testing.assert_allclose(G @ X, g.changes[["lam0", "lam1s", "lam1c"]].to_numpy().T, atol=1e-9)
+    # a more thrust gives more inflow: the collective's steady gain is positive
+    assert g.loads_gain.loc["lam0", "CT"] > 0
+    table = g.compare(IdentifiedInflow.from_file("uh60_hover_3state"))
+    assert set(table.output) == {"lam0", "lam1s", "lam1c"} and np.isfinite(table.model).all()
