@@ -70,7 +70,7 @@ def steady_gains(result, out, n_jobs=2):
     gains = wake_steady_gains(coaxial_compound(), recipe.ct, settings=recipe.settings, n_jobs=n_jobs, progress=True)
     gains.to_pandas().to_csv(out / "steady_gains.csv", index=False)
     gains.changes.to_csv(out / "steady_observations.csv")
-    models = {**{k: m for k, m in result.models.items()},
+    models = {**result.models,
               "shipped coaxial_hover_12state": IdentifiedInflow.from_file("coaxial_hover_12state"),
               REFERENCE: IdentifiedInflow.from_file("published_eq6_8_6_9")}
     compare = pd.concat([gains.compare(m).assign(model=k) for k, m in models.items()], ignore_index=True)
@@ -83,8 +83,8 @@ def steady_gains(result, out, n_jobs=2):
     print("  equivalent steady K_R (Eq. 2.29 at 0 rad/s), with the tilt input: "
           + ", ".join(f"{r} {v:.2f}" for r, v in gains.equivalent_kr.items())
           + "; rate only (tilt read as rate): " + ", ".join(f"{r} {v:.2f}" for r, v in blind.equivalent_kr.items()))
-    on = [f"{o}/{i} {g:+.3f}" for o in gains.tilt_gain.index for i, g in gains.tilt_gain.loc[o].items()
-          if o.partition("_")[2] == i.partition("_")[2] and o[3:5] == i[4:6]]
+    on = [f"{o}/{i} {gains.tilt_gain.loc[o, i]:+.3f}" for i in gains.tilt_gain.columns
+          for o in gains.tilt_gain.index if o == i.replace("beta", "lam", 1)]
     print("  on-axis tilt gains [1/rad]: " + ", ".join(on))
     wide = compare.pivot_table(index=["record", "window", "output"], columns="model", values="ratio", sort=False)
     print("  model / wake, on-axis steady change per record window:")

@@ -67,8 +67,7 @@ def _records(g_c, g_r, g_t, seed=1):
         _, y, _ = signal.lsim(lag, steady, t)
         df = pd.DataFrame(np.column_stack([t, u, y]), columns=["t"] + LOADS + RATES + TILTS + OUTS)
         records[name], times[name] = df, 0.5
-    _records.drift = drift
-    return records, windows, times
+    return records, windows, times, drift
 
 
 def _estimate(records, windows, times):
@@ -78,7 +77,8 @@ def _estimate(records, windows, times):
 
 def test_recovers_the_steady_gains_and_K_R_of_a_known_system():
     g_c, g_r, g_t = _truth()
-    est = _estimate(*_records(g_c, g_r, g_t))
+    records, windows, times, drift = _records(g_c, g_r, g_t)
+    est = _estimate(records, windows, times)
     assert isinstance(est, SteadyGains) and est.condition_number < 100
     # the steps settle (exp(-5.5 s / tau) ~ 1e-48): the load gains are exact to the
     # lsim discretisation
@@ -87,7 +87,7 @@ def test_recovers_the_steady_gains_and_K_R_of_a_known_system():
     # tau answers G (u - tau du/dt), so the rate gains carry the known quasi-static
     # bias -tau (G_C dC/dt / beta_dot + G_T) (here up to ~10 %), and nothing else
     rate = 0.1 / 8.0
-    bias = np.column_stack([-TAU * (g_c @ _records.drift[j] / rate + g_t[:, j]) for j in range(4)])
+    bias = np.column_stack([-TAU * (g_c @ drift[j] / rate + g_t[:, j]) for j in range(4)])
     assert np.abs(bias).max() > 0.05 * np.abs(g_r).max()          # the bias is real here...
     np.testing.assert_allclose(est.rate_gain.to_numpy(), g_r + bias, rtol=0, atol=1e-4 * np.abs(g_r).max())
     # the held tilts settle: the tilt gains are exact, and separate from the rate's
@@ -98,7 +98,6 @@ def test_recovers_the_steady_gains_and_K_R_of_a_known_system():
     long = est.to_pandas()
     assert len(long) == 6 * 14 and set(long.kind) == {"load", "flap_rate", "tilt"}
     # without the tilt inputs the same records put the tilt's answer into the rate gains
-    records, windows, times = _records(g_c, g_r, g_t)
     blind = estimate_steady_gains(records, windows, times, LOADS, RATES, OUTS, omega=OMEGA, rotors=("U", "L"))
     assert abs(blind.equivalent_kr["U"] - 1.5) > 1.0
     # rate_only() is that estimate on the ramp windows alone (exactly determined)
@@ -110,7 +109,7 @@ def test_recovers_the_steady_gains_and_K_R_of_a_known_system():
 def test_compare_simulates_a_model_on_each_record():
     import control
     g_c, g_r, g_t = _truth()
-    records, windows, times = _records(g_c, g_r, g_t)
+    records, windows, times, _ = _records(g_c, g_r, g_t)
     est = _estimate(records, windows, times)
 
     class Model:       # the truth without its tilt term (no structure of ours has one)
@@ -145,7 +144,7 @@ def test_compare_simulates_a_model_on_each_record():
 
 def test_bad_records_are_refused():
     g_c, g_r, g_t = _truth()
-    records, windows, times = _records(g_c, g_r, g_t)
+    records, windows, times, _ = _records(g_c, g_r, g_t)
     few = dict(list(records.items())[:9])
     with pytest.raises(SteadyGainsError, match="12 observations .* cannot determine gains of 14 inputs"):
         _estimate(few, windows, times)

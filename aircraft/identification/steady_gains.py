@@ -51,6 +51,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from aircraft.inflow.base import flap_rate_names, inflow_names, load_names, rotor_suffix
+
 __all__ = ["SteadyGains", "SteadyGainsError", "estimate_steady_gains", "steady_gain_specs", "wake_steady_gains"]
 
 
@@ -80,14 +82,19 @@ def steady_gain_specs(rotors, *, step_amplitude=0.02, hold_s=10.0, step_at=0.5, 
     (steps, ramps) : two lists of SweepSpec
     """
     from aircraft.wake import SweepSpec
-    suffix = (lambda r: f"_{r}") if len(rotors) > 1 else (lambda r: "")
-    steps = [SweepSpec(f"{h}{suffix(r)}", kind="step", amplitude=step_amplitude, duration=hold_s,
-                       trim_start=step_at, pulse_width=step_ramp_s, label=f"step_{h}{suffix(r)}")
-             for r in rotors for h in ("theta0", "theta1s", "theta1c")]
-    ramps = [SweepSpec(f"{b}{suffix(r)}", kind="step", amplitude=ramp_amplitude, duration=ramp_hold_s,
-                       trim_start=step_at, pulse_width=ramp_s, label=f"ramp_{b}{suffix(r)}")
-             for r in rotors for b in ("beta1s", "beta1c")]
+    sfx = [rotor_suffix(n) for n in _signal_rotors(rotors)]
+    steps = [SweepSpec(f"{h}{x}", kind="step", amplitude=step_amplitude, duration=hold_s,
+                       trim_start=step_at, pulse_width=step_ramp_s, label=f"step_{h}{x}")
+             for x in sfx for h in ("theta0", "theta1s", "theta1c")]
+    ramps = [SweepSpec(f"{b}{x}", kind="step", amplitude=ramp_amplitude, duration=ramp_hold_s,
+                       trim_start=step_at, pulse_width=ramp_s, label=f"ramp_{b}{x}")
+             for x in sfx for b in ("beta1s", "beta1c")]
     return steps, ramps
+
+
+def _signal_rotors(rotors):
+    """The rotor names as the signals carry them: a single rotor's signals have no suffix."""
+    return tuple(rotors) if len(rotors) > 1 else ("",)
 
 
 @dataclass
@@ -112,8 +119,6 @@ class SteadyGains:
     rotors : tuple of str
     records : dict
         The wake records (DataFrames) by name, for :meth:`compare`.
-    windows : dict
-        Averaging windows [s] of each record (lists of (start, end)).
     wall_s : float
     tilt_gain : pandas.DataFrame
         ``G_T``: steady inflow change per unit tip-path-plane tilt [1/rad],
@@ -129,7 +134,6 @@ class SteadyGains:
     omega: float
     rotors: tuple
     records: dict = field(default_factory=dict, repr=False)
-    windows: dict = field(default_factory=dict)
     wall_s: float = float("nan")
     tilt_gain: pd.DataFrame = None
 
@@ -141,18 +145,29 @@ class SteadyGains:
         ``K_R = -Omega G_R[lam1s_r, beta1s_dot_r]`` (and the same from the 1c pair;
         the mean of the two is returned, both are in :meth:`to_pandas`)."""
         out = {}
-        for r in self.rotors:
-            sfx = f"_{r}" if len(self.rotors) > 1 else ""
-            pair = [-self.omega * self.rate_gain.loc[f"lam1{h}{sfx}", f"beta1{h}_dot{sfx}"] for h in "sc"]
+        for r, name in zip(self.rotors, _signal_rotors(self.rotors)):
+            x = rotor_suffix(name)
+            pair = [-self.omega * self.rate_gain.loc[f"lam1{h}{x}", f"beta1{h}_dot{x}"] for h in "sc"]
             out[r] = float(np.mean(pair))
         return out
+
+    @property
+    def windows(self) -> dict:
+        """Averaging windows [s] of each record: ``{record: [(start, end), ...]}`` (from :attr:`changes`)."""
+        out = {}
+        for r in self.changes.itertuples():
+            out.setdefault(r.record, []).append((r.window_start, r.window_end))
+        return out
+
+    def _input_time(self, record):
+        return float(self.changes.t_input[self.changes.record == record].iloc[0])
 
     def rate_only(self) -> "SteadyGains":
         """The estimate a flap-rate-only structure implies: the same records without the
         tilt inputs and without the held-tilt windows (each record's first window), so
         a ramp's growing tilt is read as rate. The difference from this estimate is
         what the missing tilt input does to the steady K_R."""
-        times = self.changes.groupby("record").t_input.first().to_dict()
+        times = {n: self._input_time(n) for n in self.records}
         return estimate_steady_gains(self.records, {n: w[:1] for n, w in self.windows.items()}, times,
                                      list(self.loads_gain.columns), list(self.rate_gain.columns),
                                      list(self.loads_gain.index), omega=self.omega, rotors=self.rotors)
@@ -192,17 +207,16 @@ class SteadyGains:
                 raise SteadyGainsError(f"model must be an IdentifiedModel or an IdentifiedInflow, got "
                                        f"{type(model).__name__}")
         ins, outs = list(sys.input_labels), list(sys.output_labels)
-        rows = []
+        rows, windows = [], self.windows
         for name, df in self.records.items():
             missing = [c for c in ins + outs if c not in df]
             if missing:
                 raise SteadyGainsError(f"record {name!r} lacks the model's signals {missing}")
             t = df.t.to_numpy()
-            t_input = float(self.changes.loc[self.changes.record == name, "t_input"].iloc[0])
-            pre = df[t < t_input]
+            pre = df[t < self._input_time(name)]
             u = (df[ins] - pre[ins].mean()).to_numpy().T
             y = np.atleast_2d(control.forced_response(sys, t, u).outputs)
-            for lo, hi in self.windows[name]:
+            for lo, hi in windows[name]:
                 late = (t >= lo) & (t <= hi)
                 for out in _on_axis_outputs(name, outs):
                     k = outs.index(out)
@@ -243,12 +257,11 @@ class SteadyGains:
 
 
 def _on_axis_outputs(record, outputs):
-    """The inflow harmonics a record's input drives on its own rotor."""
-    control = record.split("_", 1)[1]           # step_theta1s_U -> theta1s_U
-    base, _, rotor = control.partition("_")
-    harmonic = {"theta0": "lam0", "theta1s": "lam1s", "theta1c": "lam1c", "beta1s": "lam1s", "beta1c": "lam1c"}
-    want = harmonic.get(base)
-    return [o for o in outputs if o.partition("_")[0] == want and o.partition("_")[2] == rotor]
+    """The inflow harmonics a record's input drives on its own rotor (the quasi-steady
+    check's rule; a tip-path-plane coordinate drives the harmonic of its swashplate twin)."""
+    from .quasi_steady import _on_axis
+    control = record.split("_", 1)[1].replace("beta", "theta", 1)   # ramp_beta1s_U -> theta1s_U
+    return [o for o in outputs if _on_axis(control, o)]
 
 
 def _windows_of(value):
@@ -338,7 +351,7 @@ def estimate_steady_gains(records, windows, input_times, loads, rates, outputs, 
     gain = pd.DataFrame(G, index=list(outputs), columns=inputs)
     return SteadyGains(loads_gain=gain[list(loads)], rate_gain=gain[list(rates)], changes=changes,
                        condition_number=cond, omega=float(omega), rotors=tuple(rotors), records=dict(records),
-                       windows={k: _windows_of(v) for k, v in windows.items()}, tilt_gain=gain[list(tilts)])
+                       tilt_gain=gain[list(tilts)])
 
 
 def wake_steady_gains(config, ct=None, *, trim=None, settings=None, condition=None, step_window=(6.0, 10.0),
@@ -371,14 +384,13 @@ def wake_steady_gains(config, ct=None, *, trim=None, settings=None, condition=No
     -------
     SteadyGains
     """
-    from aircraft.inflow.base import flap_rate_names, rotor_suffix
     from aircraft.wake import FlightCondition, run_sweeps
     from .pipeline import IdentificationSettings, _trim_request
 
     t0 = time.perf_counter()
     settings = settings or IdentificationSettings()
     rotors = tuple(r.name for r in config.rotors)
-    names = rotors if len(rotors) > 1 else ("",)
+    names = _signal_rotors(rotors)
     steps, ramps = steady_gain_specs(rotors, **spec_kwargs)
     step_at = steps[0].trim_start
     ramp_end = ramps[0].trim_start + ramps[0].pulse_width
@@ -390,8 +402,8 @@ def wake_steady_gains(config, ct=None, *, trim=None, settings=None, condition=No
                                f"the record ({ramps[0].duration:g} s)")
     runs = run_sweeps(config, settings.wake_settings, condition or FlightCondition(), steps + ramps,
                       trim=_trim_request(config, ct, trim), n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
-    loads = [f"{c}{rotor_suffix(r)}" for r in names for c in ("CT", "CL", "CM")]
-    outputs = [f"{c}{rotor_suffix(r)}" for r in names for c in ("lam0", "lam1s", "lam1c")]
+    loads = load_names(names)
+    outputs = inflow_names(names)
     records = {s.name: runs[s.name] for s in steps + ramps}
     windows = {**{s.name: [tuple(step_window)] for s in steps},
                **{s.name: [tuple(ramp_window), tuple(tilt_window)] for s in ramps}}
