@@ -78,7 +78,14 @@ def test_shipped_wake_models_load_and_carry_their_tables():
     assert "uh60_hover_3state" in shipped
     for name in shipped:
         rec = load_record(name)
-        inflow = rec.to_inflow()
+        if rec.settings["structure"]["key"] == "coaxial_12state_tilt":
+            # its file holds the tilt integrators, which to_inflow refuses (marginally stable)
+            from aircraft.identification.tilt_inputs import tilt_inflow_from_record
+            with pytest.raises(Exception, match="unstable"):
+                rec.to_inflow()
+            inflow = tilt_inflow_from_record(rec)
+        else:
+            inflow = rec.to_inflow()
         assert np.max(np.linalg.eigvals(inflow.system.A).real) < 0
         assert {"cramer_rao_pct", "insensitivity_pct", "value", "status"} <= set(rec.parameters.columns)
         assert {"output", "input", "J"} <= set(rec.cost_table.columns)

@@ -9,6 +9,8 @@
                                                       └─ effective_derivative(sys, "p", "p", omega)
     compare_bare_airframe({"Dynamic Climb": DynamicClimb(), ...}) ──► BareAirframeComparison
     ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
+    tilt_coupling.py (not re-exported): TiltCoupledHelicopter / helicopter_for, which
+        feed a TiltInflow the flapping states as tip-path-plane tilts
 """
 from .mixing import PILOT_INPUTS, ROTOR_CONTROLS, mixing_matrix
 from .model import BODY_STATES, Helicopter, HelicopterSettings

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 from .pipeline import IdentificationSettings, identification_hash, identify_inflow
 from .store import ModelRecord, load_record, settings_hash, shipped_model_path, shipped_models
+from . import tilt_inputs  # noqa: F401  (registers the coaxial_12state_tilt structure)
 
 __all__ = ["Recipe", "RECIPES", "PUBLISHED_FILES", "published_record", "regenerate", "stale_models", "main"]
 
@@ -68,6 +69,18 @@ RECIPES = {
         "Coaxial compound (Table B.1), hover, system C_T 0.0096: 12-state near/far-wake F/G/C model "
         "with flap-rate inputs (Eqs. 6.2-6.3 structure plus the 6-state's lambda/C delays and the "
         "cyclic loads feeding the cyclic far wake, our rotor frames), fitted in stages (§6.4.3) "
+        "from six swashplate and four prescribed tip-path-plane sweeps of our free-vortex wake "
+        "(default resolution)"),
+    # the same ten sweeps as coaxial_hover_12state; the inflow also answers each rotor's
+    # tip-path-plane tilt (held records of our wake: the upper blades move through the
+    # lower rotor's induced-velocity gradient), see aircraft.identification.tilt_inputs
+    "coaxial_hover_12state_tilt": Recipe(
+        "coaxial_compound", "coaxial_12state_tilt", 0.0053 + 0.0043,
+        "Coaxial compound (Table B.1), hover, system C_T 0.0096: 12-state near/far-wake F/G/C model "
+        "with flap-rate inputs and tip-path-plane tilt inputs (four integrator states of the flap "
+        "rates feeding the near-wake cyclic rows; fly it with "
+        "aircraft.identification.tilt_inputs.tilt_inflow_from_record), first-order collective with "
+        "Pitt-Peters' gain, flap rates into the near wake only, our rotor frames; fitted in stages "
         "from six swashplate and four prescribed tip-path-plane sweeps of our free-vortex wake "
         "(default resolution)"),
     # the same six sweeps as coaxial_hover_6state, every coupling hover's axisymmetry

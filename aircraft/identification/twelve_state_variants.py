@@ -146,6 +146,20 @@ class Coaxial12StateConstrained(Coaxial12State):
 
     def build(self, initial, omega, fixed=()):
         from flightid import FGCStructure
+        return self._assemble(FGCStructure, *self._fgc_patterns(), initial, omega, fixed)
+
+    def _assemble(self, cls, F, G, C, tau, initial, omega, fixed):
+        """``cls(F, G, C, tau, ...)`` with this structure's parameters started at ``initial``."""
+        names = set(self.parameter_names())
+        init = {n: float(v) for n, v in dict(initial).items() if n in names}
+        missing = names - set(init)
+        if missing:
+            raise KeyError(f"no initial value for {sorted(missing)[:6]}... ({len(missing)} parameters)")
+        return cls(F, G, C, tau, inputs=self.inputs, outputs=self.outputs, initial=init,
+                   fixed=[f for f in fixed if f in names], omega=omega, states=self.states)
+
+    def _fgc_patterns(self):
+        """``F`` (12 x 12), ``G`` (12 x inputs) patterns, ``C`` (6 x 12) and the delays' pattern."""
         F = [[0] * 12 for _ in range(12)]
         for i, j in self._f_entries:
             F[i - 1][j - 1] = self._entry("f", i, j)
@@ -159,14 +173,7 @@ class Coaxial12StateConstrained(Coaxial12State):
         C = np.zeros((6, 12))
         for k in range(6):
             C[k, 2 * k] = C[k, 2 * k + 1] = 1.0
-        tau = self._tau_pattern()
-        names = set(self.parameter_names())
-        init = {n: float(v) for n, v in dict(initial).items() if n in names}
-        missing = names - set(init)
-        if missing:
-            raise KeyError(f"no initial value for {sorted(missing)[:6]}... ({len(missing)} parameters)")
-        return FGCStructure(F, G, C, tau, inputs=self.inputs, outputs=self.outputs, initial=init,
-                            fixed=[f for f in fixed if f in names], omega=omega, states=self.states)
+        return F, G, C, self._tau_pattern()
 
     def parameter_names(self):
         """Names of the free-able parameters (after ties, without the held and removed ones)."""
@@ -225,8 +232,9 @@ class TwelveStateComparison:
         trimmed hover aircraft at 0 and 1 rad/s [1/s], when flown),
         ``Lp_real_0_load_path_only`` / ``Lp_real_0_flap_rate_path_only`` (the
         same at 0 rad/s with the model's flap-rate inputs, then its loads,
-        disconnected: :func:`aircraft.inflow.paths.without_inputs`),
-        ``KR_equivalent_steady_U`` / ``_L`` (each rotor's steady on-axis lambda1s
+        disconnected: :func:`aircraft.inflow.paths.without_inputs`; a tilt
+        model's tilt path counts as flapping path), ``Lp_real_0_without_tilt``
+        (tilt models: the tilt path disconnected), ``KR_equivalent_steady_U`` / ``_L`` (each rotor's steady on-axis lambda1s
         answer to a tip-path-plane rate as the K_R of Eq. 2.29 it amounts to),
         ``steady_ratio_<control>`` and ``quasi_steady_passes`` (model / wake steady
         on-axis inflow change after held steps, when checked), ``wall_s`` (the
@@ -284,9 +292,10 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
 
     Parameters
     ----------
-    variants : mapping of str to dict, optional
-        Label -> :class:`Coaxial12StateConstrained` keyword arguments (default
-        :data:`VARIANTS`).
+    variants : mapping of str to dict or Coaxial12StateConstrained, optional
+        Label -> :class:`Coaxial12StateConstrained` keyword arguments or a
+        structure (e.g. :class:`~aircraft.identification.tilt_inputs.Coaxial12StateTilt`)
+        (default :data:`VARIANTS`).
     config : aircraft.AircraftConfig, optional
         Coaxial pair (default :func:`aircraft.configs.coaxial_compound`).
     ct : float, optional
@@ -333,7 +342,7 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
     references = _references(references) if fly else {}
     rows, models = [], {}
     for label, kwargs in variants.items():
-        structure = Coaxial12StateConstrained(**kwargs)
+        structure = kwargs if isinstance(kwargs, Coaxial12StateConstrained) else Coaxial12StateConstrained(**kwargs)
         t0 = time.perf_counter()
         model = identify_inflow(config, None, structure, ct=ct, settings=settings, name=label,
                                 n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
@@ -392,8 +401,16 @@ def _roll_damping_of(inflow):
     out = _lp(inflow, [0.0, 1.0])
     row = {"Lp_real_0": out[0], "Lp_real_1": out[1]}
     if inflow.uses_flap_rates:
+        tilted = getattr(inflow, "uses_flap_tilts", False)
+
+        def _with_tilt(model):
+            # a tilt model's flapping path is its flap rates and its tilts together
+            from aircraft.inflow.tilt import TiltInflow
+            return TiltInflow.from_inflow(model, inflow.tilt_matrix, inflow.tilt_names) if tilted else model
         row["Lp_real_0_load_path_only"] = _lp(without_inputs(inflow, inflow.rate_names), [0.0])[0]
-        row["Lp_real_0_flap_rate_path_only"] = _lp(without_inputs(inflow, inflow.load_names), [0.0])[0]
+        row["Lp_real_0_flap_rate_path_only"] = _lp(_with_tilt(without_inputs(inflow, inflow.load_names)), [0.0])[0]
+        if tilted:
+            row["Lp_real_0_without_tilt"] = _lp(inflow.without_tilts(), [0.0])[0]
         row.update(_steady_curvature(inflow))
     return row
 
@@ -418,6 +435,7 @@ def _steady_curvature(inflow):
 
 def _lp(inflow, omega):
     from aircraft.configs import coaxial_compound
-    from aircraft.helicopter import Helicopter, HelicopterSettings, effective_derivative, linearize, trim
-    tr = trim(Helicopter(coaxial_compound(), inflow, HelicopterSettings(n_span=8, n_average=1)))
+    from aircraft.helicopter import HelicopterSettings, effective_derivative, linearize, trim
+    from aircraft.helicopter.tilt_coupling import helicopter_for
+    tr = trim(helicopter_for(coaxial_compound(), inflow, HelicopterSettings(n_span=8, n_average=1)))
     return [float(v.real) for v in effective_derivative(linearize(tr), "p", "p", omega)]

@@ -6,6 +6,7 @@
       ├─ PittPeters / IsolatedRotors          (pitt_peters.py, Eq. 1.10, K_R of Eq. 2.29)
       ├─ ClimbingLowerRotor / DynamicClimb    (coaxial.py, §2.2.2.3-2.2.2.4, Eq. 2.7)
       ├─ IdentifiedInflow                     (identified.py: any identified model, Padé delays)
+      │    └─ TiltInflow                      (tilt.py, not re-exported: + tip-path-plane tilt inputs)
       └─ ScheduledInflow                      (scheduled.py: identified models interpolated in spacing, C_T)
     published.py: the dissertation's printed identified models, as reference data
 """
