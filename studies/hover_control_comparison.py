@@ -14,8 +14,13 @@ sensor in every case:
 
 The wake-identified inflow of cases B and C is, by default, **our 12-state
 near/far-wake model with flap-rate inputs** (Eqs. 6.2-6.3 structure, as the
-dissertation's §7.5 flew), identified from our own free-vortex wake and shipped as
-``aircraft/data/models/coaxial_hover_12state.json``. Further rows fly our 6-state
+dissertation's §7.5 flew) **and tip-path-plane tilt inputs**
+(:mod:`aircraft.identification.tilt_inputs`: our coaxial wake's inflow answers a held
+tilt), identified from our own free-vortex wake, shipped as
+``aircraft/data/models/coaxial_hover_12state_tilt.json`` and flown by
+:class:`aircraft.helicopter.tilt_coupling.TiltCoupledHelicopter` (the tilts are the
+flapping states). Further rows fly our flap-rate-only 12-state
+(``coaxial_hover_12state``), our 6-state
 model (``coaxial_hover_6state``), our 6-state with every coupling hover's
 axisymmetry allows and the collective apparent masses held at Pitt-Peters'
 (``coaxial_hover_6state_axisymmetric``) and the dissertation's printed Eq. 5.3 and
@@ -23,7 +28,7 @@ Eq. 6.8-6.9 models (converted to our rotor frames by
 :func:`aircraft.inflow.published.in_rotor_frames`; the 12-state from its shipped file
 ``published_eq6_8_6_9``) the same way: (B) the DC design on that aircraft, (C) a design optimised on it.
 ``--identified published`` puts Eq. 5.3 in cases B/C instead (the former default);
-``--regenerate`` rebuilds our three shipped models from the free wake first (about 55
+``--regenerate`` rebuilds our four shipped coaxial models from the free wake first (about 55
 minutes on 2 cores uncached; progress shown, wake runs cached).
 
 Each aircraft is our coaxial model (:mod:`aircraft.helicopter`) trimmed in hover
@@ -57,8 +62,10 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from aircraft import coaxial_compound
-from aircraft.helicopter import (Helicopter, HelicopterSettings, effective_derivative, flap_mode_damping,
+from aircraft.helicopter import (HelicopterSettings, effective_derivative, flap_mode_damping,
                                  linearize, modes, trim)
+from aircraft.helicopter.tilt_coupling import helicopter_for
+from aircraft.identification.tilt_inputs import tilt_inflow_from_record
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
 from controllers import (CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo,
@@ -79,7 +86,7 @@ PRINTED = ("Eq. 5.3", "Eq. 6.8-6.9")
 
 def roll_plant(inflow, settings):
     """Trim the coaxial in hover with ``inflow``; return (roll design plant, linear model, trim)."""
-    tr = trim(Helicopter(coaxial_compound(), inflow, settings))
+    tr = trim(helicopter_for(coaxial_compound(), inflow, settings))
     sys = linearize(tr)
     return roll_design_plant(sys), sys, tr
 
@@ -246,11 +253,11 @@ def main(argv=None):
     parser.add_argument("--skip-identification", action="store_true")
     parser.add_argument("--n-span", type=int, default=8, help="blade-element Gauss points")
     parser.add_argument("--identified", choices=("ours", "published"), default="ours",
-                        help="inflow of cases B and C: our 12-state model identified from our free wake "
-                             "(shipped file aircraft/data/models/coaxial_hover_12state.json; default), or the "
+                        help="inflow of cases B and C: our 12-state model with tilt inputs identified from our free wake "
+                             "(shipped file aircraft/data/models/coaxial_hover_12state_tilt.json; default), or the "
                              "dissertation's Eq. 5.3 6-state model converted to our rotor frames")
     parser.add_argument("--regenerate", action="store_true",
-                        help="rebuild our three shipped 6- and 12-state models from the free wake first "
+                        help="rebuild our four shipped 6- and 12-state models from the free wake first "
                              "(progress shown, wake runs cached; ~55 min on 2 cores uncached)")
     args = parser.parse_args(argv)
     t_start = time.perf_counter()
@@ -261,7 +268,8 @@ def main(argv=None):
         print(f"[stage 1] done: J_ave = {cost.J.mean():.2f} over {len(cost)} responses\n")
     if args.regenerate:
         from aircraft.identification import regenerate
-        for name in ("coaxial_hover_6state", "coaxial_hover_6state_axisymmetric", "coaxial_hover_12state"):
+        for name in ("coaxial_hover_6state", "coaxial_hover_6state_axisymmetric", "coaxial_hover_12state",
+                     "coaxial_hover_12state_tilt"):
             print(f"[regenerate] {name} from the free wake")
             regenerate(name, progress=True)
 
@@ -274,12 +282,14 @@ def main(argv=None):
     published6 = IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE))
     if args.identified == "ours":
         from aircraft.identification import load_record
-        inflows = {"ID": IdentifiedInflow.from_file("coaxial_hover_12state"),
+        inflows = {"ID": tilt_inflow_from_record("coaxial_hover_12state_tilt"),
+                   "ID12R": IdentifiedInflow.from_file("coaxial_hover_12state"),
                    "ID6": IdentifiedInflow.from_file("coaxial_hover_6state"),
                    "IDA": IdentifiedInflow.from_file("coaxial_hover_6state_axisymmetric"), "Eq. 5.3": published6,
                    # the 12-state the dissertation's §7.5 flew, in our rotor frames (shipped file)
                    "Eq. 6.8-6.9": IdentifiedInflow.from_file("published_eq6_8_6_9")}
-        for key, name in (("ID", "coaxial_hover_12state"), ("ID6", "coaxial_hover_6state"),
+        for key, name in (("ID", "coaxial_hover_12state_tilt"), ("ID12R", "coaxial_hover_12state"),
+                          ("ID6", "coaxial_hover_6state"),
                           ("IDA", "coaxial_hover_6state_axisymmetric")):
             rec = load_record(name)
             trusted = rec.parameters[rec.parameters.status == "free"]
@@ -288,7 +298,8 @@ def main(argv=None):
                   f"{'trusted' if trusted else 'NOT trusted: see its CR/insensitivity'})")
     else:
         inflows = {"ID": published6}
-    labels = {"ID": "our 12-state" if args.identified == "ours" else "Eq. 5.3", "ID6": "our 6-state",
+    labels = {"ID": "our 12-state" if args.identified == "ours" else "Eq. 5.3",
+              "ID12R": "our 12-state, flap rates only", "ID6": "our 6-state",
               "IDA": "our axisymmetric 6-state", "Eq. 5.3": "Eq. 5.3 (printed)",
               "Eq. 6.8-6.9": "Eq. 6.8-6.9 (printed)"}
     print("[stage 2] trim + linearise the coaxial in hover with each inflow model")
@@ -381,7 +392,7 @@ def main(argv=None):
                  (f"(B) DC on {labels['ID']}", res_a.design.with_plant(plants["ID"]), "ID", 1)]
     if res_c is not None:
         rows_spec.append((f"(C) {labels['ID']} on {labels['ID']}", res_c.design, "ID", 2))
-    for key in ("ID6", "IDA") + PRINTED:
+    for key in ("ID12R", "ID6", "IDA") + PRINTED:
         if key in inflows:
             rows_spec.append((f"(B) DC on {labels[key]}", res_a.design.with_plant(plants[key]), key, None))
             if results[key] is not None:
@@ -412,7 +423,7 @@ def main(argv=None):
     t74 = pd.DataFrame({"parameter": ["K_p", "K_phi", "K_Iphi", "tau_eq"],
                         "ours (A)&(B)": gains(res_a.design),
                         f"ours (C) {labels['ID']}": gains(res_c.design) if res_c is not None else [np.nan] * 4,
-                        **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID6", "IDA") + PRINTED
+                        **{f"ours (C) {labels[k]}": gains(results[k].design) for k in ("ID12R", "ID6", "IDA") + PRINTED
                            if k in results and results[k] is not None},
                         "ours (D) robust": gains(res_d.design) if res_d is not None else [np.nan] * 4,
                         "dissertation (A)&(B)": [DISSERTATION_74[k][0] for k in ("K_p", "K_phi", "K_Iphi", "tau_eq")],

@@ -3,6 +3,8 @@
 Identifies :data:`aircraft.identification.twelve_state_variants.VARIANTS` (the shipped
 12-state structure, then the collective made first order, then its near-wake gain held
 at Pitt-Peters', then the far-far cyclic coupling that forms a flat direction removed)
+and last :class:`~aircraft.identification.tilt_inputs.Coaxial12StateTilt` (tip-path-plane
+tilt inputs; the shipped ``coaxial_hover_12state_tilt`` structure)
 from the shipped ``coaxial_hover_12state`` recipe's wake runs (six swashplate and four
 tip-path-plane sweeps, cached), and tabulates the trust guidelines per variant beside
 the effective roll damping of the hover aircraft flying it
@@ -31,9 +33,12 @@ from pathlib import Path
 import pandas as pd
 
 from aircraft.identification.steady_gains import wake_steady_gains
+from aircraft.identification.tilt_inputs import Coaxial12StateTilt
 from aircraft.identification.twelve_state_variants import VARIANTS, compare_twelve_state_variants
 
 REFERENCE = "Eq. 6.8-6.9 printed, our frames (reference: flown only)"
+#: the last row: tip-path-plane tilt inputs (aircraft.identification.tilt_inputs)
+TILT = "tilt inputs, flap rates into the near wake only, no f1_7 (coaxial_hover_12state_tilt)"
 
 
 def run(out_dir="results/twelve_state_variants", n_jobs=2):
@@ -41,7 +46,7 @@ def run(out_dir="results/twelve_state_variants", n_jobs=2):
     out.mkdir(parents=True, exist_ok=True)
     # the printed Eq. 6.8-6.9 model in our frames flown beside them: a 12-state with
     # flap-rate inputs whose steady curvature path leaves the roll damping alone
-    result = compare_twelve_state_variants(VARIANTS, n_jobs=n_jobs, progress=True,
+    result = compare_twelve_state_variants({**VARIANTS, TILT: Coaxial12StateTilt()}, n_jobs=n_jobs, progress=True,
                                            references={REFERENCE: "published_eq6_8_6_9"})
     table = result.to_pandas()
     table.to_csv(out / "table.csv", index=False)
@@ -76,7 +81,9 @@ def steady_gains(result, out, n_jobs=2):
     compare = pd.concat([gains.compare(m).assign(model=k) for k, m in models.items()], ignore_index=True)
     compare.to_csv(out / "steady_compare.csv", index=False)
     last = list(result.models)[-1]
-    gains.plot(models={f"variant {len(result.models)}": result.models[last], "Eq. 6.8-6.9 printed": models[REFERENCE]}) \
+    gains.plot(models={f"variant {len(result.models) - 1}": result.models[list(result.models)[-2]],
+                       f"variant {len(result.models)} (tilt inputs)": result.models[last],
+                       "Eq. 6.8-6.9 printed": models[REFERENCE]}) \
         .savefig(out / "steady_gains.png", dpi=90)
     blind = gains.rate_only()
     print(f"wake's steady gains ({gains.wall_s:.0f} s; regressor condition number {gains.condition_number:.3g}):")
