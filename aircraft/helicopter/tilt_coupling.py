@@ -63,6 +63,18 @@ class TiltCoupledHelicopter(Helicopter):
 
 def helicopter_for(config, inflow, settings=None):
     """The aircraft that flies ``inflow``: :class:`TiltCoupledHelicopter` for a model
-    with tilt inputs, else :class:`Helicopter`."""
+    with tilt inputs, else :class:`Helicopter`.
+
+    Parameters
+    ----------
+    config : aircraft.AircraftConfig
+    inflow : aircraft.inflow.InflowModel
+    settings : HelicopterSettings, optional
+        Default: the helicopter's own default.
+
+    Returns
+    -------
+    Helicopter
+    """
     cls = TiltCoupledHelicopter if getattr(inflow, "uses_flap_tilts", False) else Helicopter
     return cls(config, inflow, settings) if settings is not None else cls(config, inflow)

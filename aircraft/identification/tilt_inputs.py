@@ -76,7 +76,16 @@ class TiltFGCStructure(FGCStructure):
 
     The integrators (``xi' = beta_dot``, zero rows of ``F``) carry an input, the
     tilt; ``F`` is block triangular, so the inflow's poles are those of its
-    leading block, and the fit's stability guard looks at those only."""
+    leading block, and the fit's stability guard looks at those only.
+
+    Parameters
+    ----------
+    F, G, C, tau, inputs, outputs, initial, fixed, states, D :
+        As :class:`flightid.FGCStructure`; the last :attr:`n_integrators` rows of
+        ``F`` must be zero (checked when the poles are asked for).
+    omega : float
+        Rotor speed [rad/s] of the azimuth time scale.
+    """
 
     n_integrators = 4
 
