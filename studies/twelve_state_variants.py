@@ -15,7 +15,9 @@ Then the wake's own steady gains (:func:`aircraft.identification.steady_gains.wa
 held swashplate steps, flap-rate ramps, held tilts; cached records) are estimated and
 each model is driven by those records' loads and flap rates.
 Writes ``results/twelve_state_variants/``: ``table.csv``, ``parameters.csv`` (every
-variant's parameters, CR and insensitivity), ``cost_tables.csv``, ``variants.png``;
+variant's parameters, CR and insensitivity), ``cost_tables.csv``, ``variants.png``,
+``guideline.csv`` (each variant's parameters outside the bounds, kept or not by the
+guideline's keep rule, with the reason: :func:`aircraft.identification.guideline.guideline_check`);
 ``steady_gains.csv`` (the wake's G_C, G_R, G_T, long), ``steady_observations.csv`` (each
 record window's changes), ``steady_compare.csv`` (per model, record window and on-axis
 output: wake and model change), ``steady_gains.png``.
@@ -32,6 +34,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from aircraft.identification.guideline import guideline_check
 from aircraft.identification.steady_gains import wake_steady_gains
 from aircraft.identification.tilt_inputs import Coaxial12StateTilt
 from aircraft.identification.twelve_state_variants import VARIANTS, compare_twelve_state_variants
@@ -58,9 +61,15 @@ def run(out_dir="results/twelve_state_variants", n_jobs=2):
     pd.set_option("display.width", 200)
     print("12-state coaxial hover variants, one wake data set (the shipped recipe's):")
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+    guideline = []
     for k, m in result.models.items():
         fails = m.trust_failures()
         print(f"{k}: {'trusted' if not fails else 'NOT trusted: ' + ' | '.join(fails)}")
+        check = guideline_check(m)
+        guideline.append(check.table.assign(variant=k, model_passes=check.passes))
+        print(f"  with the guideline's keep rule: {'meets it' if check.passes else 'fails: ' + ' | '.join(check.failures)}"
+              + "".join(f"\n    {r.parameter}: {r.reason}" for r in check.table.itertuples() if r.verdict == "kept"))
+    pd.concat(guideline, ignore_index=True).to_csv(out / "guideline.csv", index=False)
     steady_gains(result, out, n_jobs=n_jobs)
     print(f"tables and figures in {out}/")
     return table

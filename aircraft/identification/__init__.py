@@ -41,6 +41,9 @@
                    tip-path-plane tilt from held steps, ramps and held tilts; SteadyGains
                    (.equivalent_kr, .compare(model), .plot()). Import it from the module
                    (same reason)
+    guideline.py   guideline_check: the guideline's keep rule (a parameter over a bound
+                   kept when its removal raised the cost), from the reduction's log.
+                   Import it from the module (same reason)
     tilt_inputs.py  Coaxial12StateTilt: the 12-state plus tip-path-plane tilt inputs
                    (integrator states of the flap rates; shipped as
                    coaxial_hover_12state_tilt); tilt_inflow_from_record -> TiltInflow.
