@@ -98,6 +98,17 @@ def test_integrators_are_not_inflow_poles_and_enter_with_the_flap_rate_stage(mod
     assert any("beta" in inp for _, inp in stage.add_pairs)
 
 
+def test_linear_model_carries_the_tilt_inputs(model):
+    # a linearisation that dropped the tilts would be a silently wrong model
+    import control
+    inflow = model[3]
+    sys = inflow.linear(inflow.loads_ref, None)
+    assert list(sys.input_labels)[-4:] == inflow.tilt_names
+    dc = np.real(control.dcgain(sys))[:, -4:]
+    np.testing.assert_allclose(dc, inflow.tilt_gain().to_numpy(), rtol=1e-9, atol=1e-12)
+    np.testing.assert_array_equal(sys.trim_inputs[-4:], inflow.tilt_ref)
+
+
 def test_tilt_structure_rejects_bad_names():
     with pytest.raises(ValueError, match="not tilt gains"):
         Coaxial12StateTilt(tilt=["kon_UX"])

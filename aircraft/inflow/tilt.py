@@ -12,6 +12,7 @@ attitude that the integral of the flap-rate inputs would give.
 
     TiltInflow(system, tilt_matrix, tilt_names)     x' = A x + B [dC; beta_dot] + B_T (beta - beta_ref)
         .derivatives(x, loads, ops, rates, tilts)
+        .linear(loads, ops)  StateSpace with the tilts as inputs too
         .tilt_gain()       steady inflow per rad of tilt, a DataFrame
     flown by aircraft.helicopter.tilt_coupling.TiltCoupledHelicopter
 """
@@ -130,6 +131,20 @@ class TiltInflow(IdentifiedInflow):
         """States at equilibrium with ``loads`` and ``tilts`` (zeros: the reference tilts)."""
         b = self.tilt_ref if tilts is None else tilts
         return -np.linalg.solve(self.system.A, self.system.B @ self._u(loads, None) + self._tilt_term(b))
+
+    def linear(self, loads, ops):
+        """The linear model with the tilts as further inputs (after the loads and flap
+        rates), about ``loads`` and the reference tilts; as :meth:`IdentifiedInflow.linear`."""
+        import control
+        base = super().linear(loads, ops)
+        sys = control.ss(base.A, np.hstack([np.asarray(base.B), self.tilt_matrix]), base.C,
+                         np.zeros((base.noutputs, base.ninputs + self.tilt_matrix.shape[1])),
+                         inputs=list(base.input_labels) + self.tilt_names, outputs=list(base.output_labels),
+                         states=list(base.state_labels), name=base.name)
+        sys.trim_states = base.trim_states
+        sys.trim_inputs = np.concatenate([base.trim_inputs, self.tilt_ref])
+        sys.trim_outputs = base.trim_outputs
+        return sys
 
     def without_tilts(self):
         """The same model with the tilt path disconnected (an :class:`IdentifiedInflow`)."""
