@@ -28,6 +28,10 @@ Eq. 6.8-6.9 models (converted to our rotor frames by
 :func:`aircraft.inflow.published.in_rotor_frames`; the 12-state from its shipped file
 ``published_eq6_8_6_9``) the same way: (B) the DC design on that aircraft, (C) a design optimised on it.
 ``--identified published`` puts Eq. 5.3 in cases B/C instead (the former default);
+``--hold-drift`` holds u and v in every roll design plant (a perfectly tight
+position-hold outer loop, :func:`aircraft.helicopter.hold.hold_states`; the
+dissertation's Eq. 7.21 leaves them free, and with them free a slow zero pair of the
+translational drift decides whether our 12-state can carry a design);
 ``--regenerate`` rebuilds our four shipped coaxial models from the free wake first (about 55
 minutes on 2 cores uncached; progress shown, wake runs cached).
 
@@ -64,6 +68,7 @@ from matplotlib.figure import Figure
 from aircraft import coaxial_compound
 from aircraft.helicopter import (HelicopterSettings, effective_derivative, flap_mode_damping,
                                  linearize, modes, trim)
+from aircraft.helicopter.hold import hold_states
 from aircraft.helicopter.tilt_coupling import helicopter_for
 from aircraft.identification.tilt_inputs import tilt_inflow_from_record
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
@@ -84,11 +89,13 @@ DISSERTATION_75 = {"crossover_rad_s": (3.53, 3.47, 5.38), "GM_dB": (7.2, 6.25, 6
 PRINTED = ("Eq. 5.3", "Eq. 6.8-6.9")
 
 
-def roll_plant(inflow, settings):
-    """Trim the coaxial in hover with ``inflow``; return (roll design plant, linear model, trim)."""
+def roll_plant(inflow, settings, hold=()):
+    """Trim the coaxial in hover with ``inflow``; return (roll design plant, linear model, trim).
+
+    ``hold``: states held at trim in the design plant only (``--hold-drift``: u, v)."""
     tr = trim(helicopter_for(coaxial_compound(), inflow, settings))
     sys = linearize(tr)
-    return roll_design_plant(sys), sys, tr
+    return roll_design_plant(hold_states(sys, hold) if hold else sys), sys, tr
 
 
 def slow_zeros(plants, limit=2.0):
@@ -256,6 +263,9 @@ def main(argv=None):
                         help="inflow of cases B and C: our 12-state model with tilt inputs identified from our free wake "
                              "(shipped file aircraft/data/models/coaxial_hover_12state_tilt.json; default), or the "
                              "dissertation's Eq. 5.3 6-state model converted to our rotor frames")
+    parser.add_argument("--hold-drift", action="store_true",
+                        help="hold u and v in every roll design plant (a perfectly tight position-hold outer "
+                             "loop; Eq. 7.21 leaves them free): writes hover_control_comparison_hold_drift")
     parser.add_argument("--regenerate", action="store_true",
                         help="rebuild our four shipped 6- and 12-state models from the free wake first "
                              "(progress shown, wake runs cached; ~55 min on 2 cores uncached)")
@@ -273,7 +283,7 @@ def main(argv=None):
             print(f"[regenerate] {name} from the free wake")
             regenerate(name, progress=True)
 
-    suffix = {"ours": "", "published": "_published"}[args.identified]
+    suffix = {"ours": "", "published": "_published"}[args.identified] + ("_hold_drift" if args.hold_drift else "")
     out = Path(args.out) / ("hover_control_comparison" + suffix)
     out.mkdir(parents=True, exist_ok=True)
     settings = HelicopterSettings(n_span=args.n_span, n_average=1)   # hover: axisymmetric
@@ -303,11 +313,12 @@ def main(argv=None):
               "IDA": "our axisymmetric 6-state", "Eq. 5.3": "Eq. 5.3 (printed)",
               "Eq. 6.8-6.9": "Eq. 6.8-6.9 (printed)"}
     print("[stage 2] trim + linearise the coaxial in hover with each inflow model")
-    plant_dc, sys_dc, tr_dc = roll_plant(DynamicClimb(), settings)
+    hold = ("u", "v") if args.hold_drift else ()
+    plant_dc, sys_dc, tr_dc = roll_plant(DynamicClimb(), settings, hold)
     plants, systems = {"DC": plant_dc}, {"DC": sys_dc}
     print(f"  DC: trim residual {tr_dc.max_residual:.1e}, C_T U/L = {tr_dc.loads['CT_U']:.5f}/{tr_dc.loads['CT_L']:.5f}")
     for key, inflow in inflows.items():
-        plants[key], systems[key], tr = roll_plant(inflow, settings)
+        plants[key], systems[key], tr = roll_plant(inflow, settings, hold)
         print(f"  {key} ({labels[key]}): trim residual {tr.max_residual:.1e}, "
               f"C_T U/L = {tr.loads['CT_U']:.5f}/{tr.loads['CT_L']:.5f}")
     aircraft_name = {k: ("Dynamic Climb" if k == "DC" else labels[k]) for k in systems}

@@ -11,6 +11,8 @@
     ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
     tilt_coupling.py (not re-exported): TiltCoupledHelicopter / helicopter_for, which
         feed a TiltInflow the flapping states as tip-path-plane tilts
+    hold.py (not re-exported): hold_states(sys, ["u", "v"]), states held at trim
+        (a perfectly tight outer loop)
 """
 from .mixing import PILOT_INPUTS, ROTOR_CONTROLS, mixing_matrix
 from .model import BODY_STATES, Helicopter, HelicopterSettings
