@@ -78,8 +78,8 @@ STUDIES = {s.command: s for s in (
           variants={"--identified=published": (2.0, ("{out}/identification_demo",
                                                      "{out}/hover_control_comparison_published"),
                                                "cases B/C on the dissertation's Eq. 5.3 model instead"),
-                    "--hold-drift": (2.0, ("{out}/identification_demo", "{out}/hover_control_comparison_hold_drift"),
-                                     "u and v held in the roll design plants"),
+                    "--free-drift": (2.0, ("{out}/identification_demo", "{out}/hover_control_comparison_free_drift"),
+                                     "u and v left free in the roll design plants (Eq. 7.21 literally)"),
                     "--regenerate": (45.0, ("{out}/identification_demo", "{out}/hover_control_comparison"),
                                      "re-identifies our 6- and 12-state models from the free wake first; "
                                      "wake runs cached under .cache/wake (a few minutes after)")}),
