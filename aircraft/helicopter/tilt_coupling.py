@@ -16,12 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .model import Helicopter
+from ..inflow.tilt import TILT_HARMONICS
+from .model import Helicopter, HelicopterSettings
 from .rotor import FLAP_STATES
 
 __all__ = ["TiltCoupledHelicopter", "helicopter_for"]
-
-_TILT_STATES = ("beta1s", "beta1c")   # the order of TiltInflow.tilt_names per rotor
 
 
 class TiltCoupledHelicopter(Helicopter):
@@ -42,9 +41,9 @@ class TiltCoupledHelicopter(Helicopter):
     def __init__(self, config, inflow, settings=None):
         if not getattr(inflow, "uses_flap_tilts", False):
             raise TypeError(f"{type(inflow).__name__} takes no tip-path-plane tilts: use Helicopter")
-        super().__init__(config, inflow, settings) if settings is not None else super().__init__(config, inflow)
+        super().__init__(config, inflow, HelicopterSettings() if settings is None else settings)
         self._tilt_index = np.array([9 + 8 * k + FLAP_STATES.index(b)
-                                     for k in range(len(self.rotors)) for b in _TILT_STATES])
+                                     for k in range(len(self.rotors)) for b in TILT_HARMONICS])
 
     def tilts(self, x):
         """Each rotor's shaft-relative tilt ``beta1s, beta1c`` [rad] from state ``x``."""
@@ -77,4 +76,4 @@ def helicopter_for(config, inflow, settings=None):
     Helicopter
     """
     cls = TiltCoupledHelicopter if getattr(inflow, "uses_flap_tilts", False) else Helicopter
-    return cls(config, inflow, settings) if settings is not None else cls(config, inflow)
+    return cls(config, inflow, HelicopterSettings() if settings is None else settings)

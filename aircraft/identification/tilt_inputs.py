@@ -41,6 +41,9 @@ from __future__ import annotations
 import numpy as np
 from flightid import FGCStructure
 
+from aircraft.inflow.base import rotor_suffix
+from aircraft.inflow.tilt import TILT_HARMONICS, tilt_names
+
 from .structures import STRUCTURES
 from .twelve_state_variants import PITT_PETERS_COLLECTIVE_GAIN, Coaxial12StateConstrained
 
@@ -142,7 +145,7 @@ class Coaxial12StateTilt(Coaxial12StateConstrained):
     @property
     def tilt_names(self):
         """The tilt inputs, in the integrator states' order: ``beta1s_U, beta1c_U, beta1s_L, beta1c_L``."""
-        return [f"{b}_{r}" for r in self.rotors for b in ("beta1s", "beta1c")]
+        return tilt_names(self.rotors)
 
     @property
     def states(self):
@@ -172,9 +175,9 @@ class Coaxial12StateTilt(Coaxial12StateConstrained):
             F[i][j] = name if sign > 0 else f"-{name}"
         G = [list(row) for row in G12] + [[0] * len(self.inputs) for _ in range(4)]
         # xi' = beta_dot in azimuth time: d xi / d psi = beta_dot / Omega
-        for m, name in enumerate(self.tilt_names):
-            b, r = name.split("_")
-            G[12 + m][self.inputs.index(f"{b}_dot_{r}")] = 1.0 / float(omega)
+        rates = [f"{b}_dot{rotor_suffix(r)}" for r in self.rotors for b in TILT_HARMONICS]
+        for m, rate in enumerate(rates):
+            G[12 + m][self.inputs.index(rate)] = 1.0 / float(omega)
         C = np.hstack([np.asarray(C12, float), np.zeros((len(self.outputs), 4))])
         return self._assemble(TiltFGCStructure, F, G, C, tau, initial, omega, fixed)
 
@@ -200,16 +203,23 @@ class Coaxial12StateTilt(Coaxial12StateConstrained):
     def to_inflow(self, values, omega, *, loads_ref=None, inflow_ref=None, pade_order=2, name=None):
         """A :class:`aircraft.inflow.tilt.TiltInflow`: the 12 inflow states, and the tilt
         gains as an input matrix on the shaft-relative tilts (the integrators dropped)."""
-        from aircraft.inflow import IdentifiedInflow
-        from aircraft.inflow.tilt import TiltInflow
         fgc = self.build(values, omega)
         mats = fgc.matrices()
-        F, G = omega * np.asarray(mats["F"]), omega * np.asarray(mats["G"])
-        base = IdentifiedInflow.from_fgc(F[:12, :12], G[:12], fgc.C[:, :12], rotors=self.rotors,
-                                         input_order=self.inputs, loads_ref=loads_ref, inflow_ref=inflow_ref,
-                                         name=name or f"identified {self.key}", tau=mats.get("tau"),
-                                         pade_order=pade_order)
-        return TiltInflow.from_inflow(base, F[:12, 12:], self.tilt_names, inflow_block=F[:12, :12])
+        return _tilt_inflow(omega * np.asarray(mats["F"]), omega * np.asarray(mats["G"]), fgc.C, mats.get("tau"),
+                            rotors=self.rotors, inputs=self.inputs, loads_ref=loads_ref, inflow_ref=inflow_ref,
+                            name=name or f"identified {self.key}", pade_order=pade_order)
+
+
+def _tilt_inflow(F, G, C, tau, *, rotors, inputs, loads_ref, inflow_ref, name, pade_order):
+    """TiltInflow from the 16-state form [1/s]: the leading states and their delays are the
+    inflow model, the columns of ``F`` on the four trailing integrators the tilt matrix."""
+    from aircraft.inflow import IdentifiedInflow
+    from aircraft.inflow.tilt import TiltInflow
+    n = F.shape[0] - 4
+    base = IdentifiedInflow.from_fgc(F[:n, :n], G[:n], C[:, :n], rotors=rotors, input_order=inputs,
+                                     loads_ref=loads_ref, inflow_ref=inflow_ref, name=name, tau=tau,
+                                     pade_order=pade_order)
+    return TiltInflow.from_inflow(base, F[:n, n:], tilt_names(rotors), inflow_block=F[:n, :n])
 
 
 STRUCTURES[Coaxial12StateTilt.key] = Coaxial12StateTilt
@@ -235,8 +245,6 @@ def tilt_inflow_from_record(record, pade_order=None):
     ModelFileError
         A record of another structure, or one whose integrator rows are not zero.
     """
-    from aircraft.inflow import IdentifiedInflow
-    from aircraft.inflow.tilt import TiltInflow
     from .store import ModelFileError, load_record
     rec = load_record(record) if not hasattr(record, "matrices") else record
     key = (rec.settings.get("structure") or {}).get("key")
@@ -246,8 +254,6 @@ def tilt_inflow_from_record(record, pade_order=None):
     n = F.shape[0] - 4
     if F.shape != (16, 16) or np.any(F[n:] != 0.0) or np.any(C[:, n:] != 0.0):
         raise ModelFileError(f"{rec.name}: the tilt integrators' rows of F (and columns of C) must be zero")
-    base = IdentifiedInflow.from_fgc(F[:n, :n], G[:n], C[:, :n], rotors=rec.rotors, input_order=rec.inputs,
-                                     loads_ref=rec.loads_ref, inflow_ref=rec.inflow_ref, name=rec.name,
-                                     tau=rec.matrices.get("tau"), pade_order=pade_order or rec.pade_order)
-    names = [f"{b}_{r}" for r in rec.rotors for b in ("beta1s", "beta1c")]
-    return TiltInflow.from_inflow(base, F[:n, n:], names, inflow_block=F[:n, :n])
+    return _tilt_inflow(F, G, C, rec.matrices.get("tau"), rotors=rec.rotors, inputs=rec.inputs,
+                        loads_ref=rec.loads_ref, inflow_ref=rec.inflow_ref, name=rec.name,
+                        pade_order=pade_order or rec.pade_order)

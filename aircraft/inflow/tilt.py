@@ -25,12 +25,27 @@ from .base import rotor_suffix
 from .identified import IdentifiedInflow
 from .pitt_peters import InflowError
 
-__all__ = ["TiltInflow"]
+__all__ = ["TiltInflow", "TILT_HARMONICS", "tilt_names"]
+
+
+#: The tilt harmonics per rotor, in the order of every tilt vector and matrix column.
+TILT_HARMONICS = ("beta1s", "beta1c")
 
 
 def tilt_names(rotors):
-    """``beta1s_U, beta1c_U, beta1s_L, beta1c_L`` (single rotor: ``beta1s, beta1c``)."""
-    return [f"{b}{rotor_suffix(r)}" for r in rotors for b in ("beta1s", "beta1c")]
+    """The tilt inputs' names: ``beta1s_U, beta1c_U, beta1s_L, beta1c_L`` (single rotor:
+    ``beta1s, beta1c``).
+
+    Parameters
+    ----------
+    rotors : sequence of str
+        Rotor names (``("U", "L")``, or ``("",)`` for a single rotor).
+
+    Returns
+    -------
+    list of str
+    """
+    return [f"{b}{rotor_suffix(r)}" for r in rotors for b in TILT_HARMONICS]
 
 
 class TiltInflow(IdentifiedInflow):
