@@ -107,6 +107,10 @@ STUDIES = {s.command: s for s in (
           "constrained 12-state coaxial hover models on one wake data set: trust and roll damping per constraint",
           12.0, default_out="results/twelve_state_variants",
           cached_note="wake runs cached under .cache/wake (the shipped 12-state's; about 40 min without them)"),
+    Study("six-state-scan", "studies.six_state_scan",
+          "is any 6-state of the Eq. 5.3 family (band, a priori masses, feedthrough) trustworthy on our wake?",
+          10.0, default_out="results/six_state_scan",   # 565 s measured, wake cached
+          cached_note="wake runs cached under .cache/wake (the shipped 6-state's; about 6 min more without them)"),
     Study("coaxial-design-space", "studies.coaxial_design_space",
           "6-state coaxial inflow model across rotor spacing x thrust, scheduled (issue 14, item 4)", 25.0,
           default_out="results/coaxial_design_space",

@@ -48,6 +48,10 @@
                    (integrator states of the flap rates; shipped as
                    coaxial_hover_12state_tilt); tilt_inflow_from_record -> TiltInflow.
                    Import it from the module (same reason)
+    six_state_scan.py  six_state_scan: the Eq. 5.3 family (band, a priori masses,
+                   cross-rotor feedthrough; Coaxial6StateVariant) fitted from every start
+                   and judged by the guidelines; SixStateScan (.table, .plot()),
+                   plot_cyclic_pairs. Import it from the module (same reason)
 
 The wake (numba) is imported only when a pipeline runs.
 """
