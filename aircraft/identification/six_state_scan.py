@@ -275,8 +275,8 @@ def plot_cyclic_pairs(scan, responses, labels=None, harmonic="lam1s", fig=None):
         h, coh = responses.element(o, u)[:2]
         keep = coh >= 0.6
         axes[0, k].semilogx(w[keep], 20 * np.log10(np.abs(h[keep])), "k.", ms=3, label="wake (JIO)")
-        axes[1, k].semilogx(w[keep], np.degrees(np.unwrap(np.angle(h[keep]))), "k.", ms=3)
         ph_data = np.degrees(np.unwrap(np.angle(h[keep])))
+        axes[1, k].semilogx(w[keep], ph_data, "k.", ms=3)
         for label in labels:
             st = scan.models[label]
             hm = st.frequency_response(w)[st.outputs.index(o), st.inputs.index(u)]
@@ -301,7 +301,8 @@ def _rotor_pairs(structure):
             if o.split("_")[0] == harmonic[u.split("_")[0]]]
 
 
-def _starts(candidate, structure, responses, warm, coherence_min, extra=None):
+def _starts(structure, responses, warm, coherence_min, extra=None):
+    """The starts of one candidate, by label (see :func:`six_state_scan`)."""
     from aircraft.inflow.published import PUBLISHED_MODELS
     starts = [("lowest points", structure.initial_values(responses, 3))]
     coherent = structure.initial_values(responses, 3, coherence_min=coherence_min)
@@ -333,7 +334,7 @@ def _scan_group(candidates, responses, omega, n_omega, coherence_min, reference_
         st = cand.structure()
         pairs = _rotor_pairs(st)
         kw = dict(frequency_ranges=tuple(cand.band), n_omega=n_omega, coherence_min=coherence_min, pairs=pairs)
-        tried, starts = [], _starts(cand, st, responses, warm, coherence_min, extra_starts)
+        tried, starts = [], _starts(st, responses, warm, coherence_min, extra_starts)
         for label, init in starts:
             try:
                 r = fit(st.build(init, omega), responses, max_nfev=max_nfev, **kw)
