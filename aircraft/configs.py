@@ -164,6 +164,17 @@ class RotorConfig:
         """Lock number gamma = rho a c R^4 / I_b [-]."""
         return rho * self.lift_slope * self.chord * self.radius ** 4 / self.blade_flap_inertia
 
+    def flap_phase_lag(self, rho: float = RHO_SEA_LEVEL) -> float:
+        """Hover phase lag of the cyclic flap response behind the cyclic pitch [rad].
+
+        The classical closed form of a centre-spring blade (Johnson, *Helicopter
+        Theory*, ch. 9; Padfield, *Helicopter Flight Dynamics*, §3.2):
+        ``tan(lag) = (gamma / 8) / (nu_beta^2 - 1)``, 90 deg for a blade hinged at the
+        shaft. ``pi / 2 - lag`` is then the control phase angle of an aircraft that
+        follows this rotor's flap response (:attr:`AircraftConfig.control_phase`).
+        """
+        return math.atan2(self.lock_number(rho) / 8.0, self.flap_frequency ** 2 - 1.0)
+
     def thrust_scale(self, rho: float = RHO_SEA_LEVEL) -> float:
         """rho A (Omega R)^2 [N]: divides a thrust to give C_T."""
         return rho * self.disk_area * self.tip_speed ** 2
@@ -207,7 +218,11 @@ class AircraftConfig:
     drag areas f_x (forward), f_z (vertical) [m^2]; horizontal tail area [m^2],
     position [m] and lift slope [1/rad]; vertical tail likewise; ``rho`` [kg/m^3];
     ``trim_ct``: per-rotor thrust coefficients the wind-tunnel trims aim for in
-    hover (from the dissertation where it gives them).
+    hover (from the dissertation where it gives them); ``control_phase`` [rad]:
+    the swashplate control phase angle of the pilot mixing
+    (:mod:`aircraft.helicopter.mixing`): 0 is the articulated rule (lateral stick on
+    the cos-term cyclic), pi/2 pairs the lateral stick with theta1s, as Eq. 7.19 does
+    for a stiff hingeless rotor whose hub moment follows the blade lift directly.
     """
 
     name: str
@@ -229,6 +244,7 @@ class AircraftConfig:
     propeller: PropellerConfig | None = None
     trim_ct: tuple = ()
     omega_cruise: float | None = None
+    control_phase: float = 0.0
 
     def __post_init__(self):
         c = "AircraftConfig."
@@ -276,6 +292,7 @@ class AircraftConfig:
             _real(ConfigError, f"{c}trim_ct[{k}]", ct, positive=True, hi=0.1)
         if self.omega_cruise is not None:
             _real(ConfigError, c + "omega_cruise", self.omega_cruise, positive=True, unit="rad/s")
+        _real(ConfigError, c + "control_phase", self.control_phase, lo=-math.pi, hi=math.pi, unit="rad")
 
     @property
     def weight(self) -> float:
@@ -333,6 +350,9 @@ ASSUMPTIONS = {
     "uh60.root_cutout": "(1.25 + 3.83) ft / 26.83 ft = 0.189 (Appendix B.1 spar).",
     "uh60.blade_mass": "116 kg (UH-60A blade ~256 lb).",
     "uh60.flap_frequency": "1.035/rev: articulated rotor with 4.66 % hinge offset.",
+    "uh60.control_phase": "pi/2 minus the rotor's classical flap lag (RotorConfig.flap_phase_lag): "
+                          "4.6 deg, nearly the articulated rule (the Appendix does not give one).",
+    "coaxial.control_phase": "90 deg: Eq. 7.19 pairs the lateral stick with theta1s for this hingeless rotor.",
     "uh60.inertias": "UH-60A: Ixx 6,317, Iyy 52,216, Izz 49,889, Ixz 2,551 kg m^2 (GenHel values).",
 }
 
@@ -370,6 +390,8 @@ def coaxial_compound(cruise: bool = False) -> AircraftConfig:
         propeller=PropellerConfig(position=(-9.5, 0.0, 0.0)),
         trim_ct=(0.0053, 0.0043),
         omega_cruise=20.3,
+        # Eq. 7.19: lateral stick on theta1s for this hingeless rotor (§7.2.2)
+        control_phase=math.pi / 2,
     )
 
 
@@ -388,4 +410,6 @@ def uh60_single_rotor() -> AircraftConfig:
         mass=17150.0 * LB,
         Ixx=6317.0, Iyy=52216.0, Izz=49889.0, Ixz=2551.0,
         trim_ct=(0.0061,),
+        # ASSUMPTIONS['uh60.control_phase']: follows the rotor's own flap lag
+        control_phase=math.pi / 2 - rotor.flap_phase_lag(),
     )

@@ -54,6 +54,7 @@ from tqdm.auto import tqdm
 
 from . import metrics as m
 from .emf import EMFDesign, PIDGains
+from .gain_sampling import extend_along_ray, sample_gains
 from .nlp import _Problem, _gain_scale, _gains, _loop_factor  # noqa: F401  (re-exported for search)
 from .specs import default_specs, evaluate_specs
 
@@ -111,6 +112,15 @@ class DMOSettings:
         Upper bound of each scaled gain (K_phi = 1 crosses at the boundary).
     backoff : float
         Relative back-off of the smooth constraints (grid vs evaluation grid).
+    global_samples : int
+        Sobol samples of the gain space scored by the true specs before the NLP
+        (the global stage); 0 runs the local continuation only.
+    global_candidates : int
+        Best feasible samples (one per feasible piece) pushed along their gain ratios;
+        the NLP continuation then also starts from the best of them.
+    global_scale_span : (float, float)
+        Range of K_phi sampled, in units of the gain that puts |L| = 1 at the starting
+        crossover boundary.
     """
 
     omega: np.ndarray = field(default_factory=lambda: np.geomspace(0.05, 80.0, 250))
@@ -126,6 +136,9 @@ class DMOSettings:
     polish_evaluations: int = 25
     gain_upper: float = 50.0
     backoff: float = 0.01
+    global_samples: int = 128
+    global_candidates: int = 2
+    global_scale_span: tuple = (0.2, 10.0)
     verify_tolerance_db: float = 0.5   #: optimiser vs python-control GM agreement
     verify_tolerance_deg: float = 2.0  #: ... PM agreement
     actuator_weight: float = 0.1
@@ -159,6 +172,14 @@ class DMOSettings:
             raise ValueError(f"DMOSettings.growth must be > 1, got {self.growth}")
         if self.n_starts < 0 or self.max_steps < 1:
             raise ValueError("DMOSettings.n_starts must be >= 0 and max_steps >= 1")
+        for name in ("global_samples", "global_candidates"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
+                raise ValueError(f"DMOSettings.{name} must be an integer >= 0, got {v!r}")
+        lo, hi = self.global_scale_span
+        if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
+            raise ValueError(f"DMOSettings.global_scale_span must be (low, high) with 0 < low < high, "
+                             f"got {self.global_scale_span!r}")
 
 
 @dataclass
@@ -190,6 +211,17 @@ class DMOResult:
     wall_time: float
     message: str
     tolerance: float
+    #: global stage: every Sobol sample scored (None without one)
+    samples: pd.DataFrame | None = None
+    #: global stage: the best samples pushed along their gain ratios
+    candidates: pd.DataFrame | None = None
+    #: which path gave the answer ("starting gains" or "global candidate", ...)
+    origin: str = ""
+    #: True when no global stage ran: the answer is only local
+    local_only: bool = False
+    #: final CrsMnG2 and DrbRoH1 Level 1 boundaries [rad/s]
+    crossover_boundary: float = float("nan")
+    drb_boundary: float = float("nan")
 
     @property
     def feasible(self):
@@ -432,9 +464,49 @@ def _row(step, stage, scale, res, wall):
             "ipopt_status": res.ipopt_status[-1] if res.ipopt_status else "", "wall_s": wall}
 
 
+def _scored(designs, specs, gains, crossover_min, drb_min, labels):
+    """An OptimizationResult for a gain set scored by the true specs (no NLP)."""
+    cands = [d.with_gains(gains) for d in designs]
+    table, unmet, margin, limiting = design_margins(cands, specs, labels)
+    return OptimizationResult(cands[0], cands, not unmet, table, unmet, crossover_min, drb_min, margin,
+                              limiting, [], 0)
+
+
+def _global_candidates(designs, specs, settings, crossover_start):
+    """Global stage: Sobol sample scored by the true specs, best ones extended along their rays."""
+    scale = _gain_scale(designs, crossover_start)
+    samples = sample_gains(designs, specs, scale, crossover_start, settings.global_samples, settings.seed,
+                           scale_span=settings.global_scale_span)
+    feasible = samples[samples.feasible].sort_values("crossover", ascending=False)
+    extended, rows = [], []
+    for r in feasible.itertuples():
+        if len(extended) >= settings.global_candidates:
+            break
+        # one candidate per feasible piece: skip samples within 5 % of a kept one's crossover
+        if any(abs(r.crossover / c - 1) < 0.05 for _, c in extended):
+            continue
+        g, wc, n = extend_along_ray(designs, specs, PIDGains(r.K_phi, r.K_Iphi, r.K_p), settings.tolerance)
+        extended.append((g, wc))
+        rows.append({"K_phi": g.K_phi, "K_Iphi": g.K_Iphi, "K_p": g.K_p, "crossover": wc,
+                     "sampled_crossover": r.crossover, "evaluations": n})
+    return samples, sorted(extended, key=lambda c: -c[1]), pd.DataFrame(rows)
+
+
 def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5, drb_start=0.9,
         progress=True, labels=None) -> DMOResult:
     """Raise the crossover and DRB Level 1 boundaries to the design margin.
+
+    Three stages. (1) Global: a Sobol sample of the gain space
+    (``settings.global_samples`` points) scored by the true specs at the starting
+    boundaries, and the best feasible samples pushed along their gain ratios to the
+    largest feasible gain (:mod:`controllers.gain_sampling`). (2) Local: from the
+    starting gains and from the best global candidate, the crossover and DRB
+    boundaries are raised together by the NLP (expansion, then bisection to
+    ``settings.tolerance``); if DRB alone stops that, the crossover alone is raised
+    with DRB held. (3) The winner's gains are pushed along their ratios once more under
+    its final boundaries. The design with the highest crossover wins. With
+    ``global_samples = 0`` only the local stage runs and the result says so
+    (``local_only``).
 
     Parameters
     ----------
@@ -455,50 +527,60 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
     -------
     DMOResult
         Final design(s), its stacked spec table, the per-step log (``history``,
-        with the most limiting spec named at every step), the unmet specs of the
-        first infeasible boundary above it (``limiting``).
+        with the most limiting spec named at every step and the path it belongs to),
+        the unmet specs of the first infeasible boundary above it (``limiting``), the
+        global stage's samples and candidates, and where the answer came from
+        (``origin``).
 
     Raises
     ------
     InfeasibleDesignError
-        Not even the starting boundaries can be met (the unmet specs are named).
+        Neither the starting gains nor any sampled gain set meets every spec at the
+        starting boundaries (the unmet specs are named).
     SolverError
         IPOPT failed on every start of a step.
+
+    Examples
+    --------
+    >>> from controllers import EMFDesign, PIDGains, DMOSettings, hover_roll_plant, dmo
+    >>> design = EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.05))
+    >>> res = dmo(design, settings=DMOSettings(global_samples=16), progress=False)
+    >>> res.crossover > 1.5
+    True
     """
     designs = _as_designs(design)
     settings = settings or DMOSettings()
+    for name, v in (("crossover_start", crossover_start), ("drb_start", drb_start)):
+        if not np.isfinite(v) or v <= 0:
+            raise ValueError(f"{name} must be a finite frequency > 0 rad/s, got {v!r}")
     labels = labels or ([d.plant.name or f"plant {k}" for k, d in enumerate(designs)] if len(designs) > 1 else None)
     rng = np.random.default_rng(settings.seed)
     t0 = time.perf_counter()
     problem = _Problem(designs, settings)
     rows = []
     bar = tqdm(total=None, desc="DMO", disable=not progress)
+    specs0 = specs_factory(crossover_start, drb_start)
+    samples, candidates, extended = None, [], pd.DataFrame()
+    if settings.global_samples:
+        bar.set_postfix(stage="global sample")
+        samples, candidates, extended = _global_candidates(designs, specs0, settings, crossover_start)
 
-    def attempt(stage, scale_c, scale_d, x0):
-        wc, wd = crossover_start * scale_c, drb_start * scale_d
+    def attempt(path, stage, t_c, t_d, x0):
+        wc, wd = crossover_start * t_c, drb_start * t_d
         ts = time.perf_counter()
         res = optimize(designs, wc, wd, specs_factory(wc, wd), settings, x0=x0, labels=labels, rng=rng,
                        problem=problem, verify=False)
-        rows.append(_row(len(rows), stage, scale_c, res, time.perf_counter() - ts))
+        rows.append({**_row(len(rows), stage, t_c, res, time.perf_counter() - ts), "path": path})
         bar.update(1)
         bar.set_postfix(wc=f"{wc:.3f}", feasible=res.feasible)
         return res
 
-    first = attempt("start", 1.0, 1.0, designs[0].gains)
-    if not first.feasible:
-        bar.close()
-        raise InfeasibleDesignError(
-            f"no gains meet every spec even at the starting boundaries (crossover {crossover_start:g} rad/s, "
-            f"DRB {drb_start:g} rad/s); unmet: {', '.join(first.unmet)}; most limiting {first.limiting_spec} "
-            f"(design margin {first.min_margin:.3g})", first.unmet, first)
-    best, upper = first, None
-
-    def raise_boundary(stage, scales, best, upper):
-        """Expand then bisect the scale; ``scales(t)`` -> (crossover scale, DRB scale)."""
-        lo, hi = 1.0, None
+    def raise_boundary(path, stage, scales, lo, best, upper):
+        """Expand then bisect the scale from ``lo``; ``scales(t)`` -> (crossover scale, DRB scale)."""
+        hi = None
         for _ in range(settings.max_steps):
             t = lo * settings.growth
-            res = attempt(stage + " (expand)", *scales(t), best.design.gains)
+            res = attempt(path, stage + " (expand)", *scales(t), best.design.gains)
             if res.feasible:
                 lo, best = t, res
             else:
@@ -506,23 +588,58 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
                 break
         while hi is not None and hi / lo - 1 > settings.tolerance:
             t = np.sqrt(lo * hi)
-            res = attempt(stage + " (bisect)", *scales(t), best.design.gains)
+            res = attempt(path, stage + " (bisect)", *scales(t), best.design.gains)
             if res.feasible:
                 lo, best = t, res
             else:
                 hi, upper = t, res
         return lo, hi, best, upper
 
-    lo, hi, best, upper = raise_boundary("crossover+DRB", lambda t: (t, t), best, upper)
-    if hi is not None and upper is not None and upper.unmet and all(u.startswith("DrbRoH1") for u in upper.unmet):
-        # DRB alone stopped the joint raise: raise the crossover alone, DRB held
-        base = lo
-        lo2, hi2, best, upper = raise_boundary("crossover", lambda t: (base * t, base), best, upper)
-        hi = None if hi2 is None else lo * hi2
-        lo = lo * lo2
+    def run_path(path, first, t_start):
+        """Joint raise from scale ``t_start``, then the crossover alone if DRB stopped it."""
+        lo, hi, best, upper = raise_boundary(path, "crossover+DRB", lambda t: (t, t), t_start, first, None)
+        if hi is not None and upper is not None and upper.unmet and all(u.startswith("DrbRoH1") for u in upper.unmet):
+            base = lo
+            lo2, hi2, best, upper = raise_boundary(path, "crossover", lambda t: (base * t, base), 1.0, best, upper)
+            hi = None if hi2 is None else lo * hi2
+            lo = lo * lo2
+        return {"lo": lo, "hi": hi, "best": best, "upper": upper, "path": path}
+
+    paths = []
+    first = attempt("starting gains", "start", 1.0, 1.0, designs[0].gains)
+    if first.feasible:
+        paths.append(run_path("starting gains", first, 1.0))
+    if candidates:
+        g, wc = candidates[0]
+        # the candidate meets the starting boundaries; start the raise where it stands
+        cand = _scored(designs, specs0, g, crossover_start, drb_start, labels)
+        drb = float(cand.specs.loc[cand.specs.spec == "DrbRoH1", "value"].min())
+        t_start = max(1.0, min(wc / crossover_start, drb / drb_start) * (1 - settings.tolerance))
+        first_g = _scored(designs, specs_factory(crossover_start * t_start, drb_start * t_start), g,
+                          crossover_start * t_start, drb_start * t_start, labels)
+        rows.append({**_row(len(rows), "start", t_start, first_g, 0.0), "path": "global candidate"})
+        if first_g.feasible:
+            paths.append(run_path("global candidate", first_g, t_start))
+    if not paths:
+        bar.close()
+        raise InfeasibleDesignError(
+            f"no gains meet every spec even at the starting boundaries (crossover {crossover_start:g} rad/s, "
+            f"DRB {drb_start:g} rad/s); unmet: {', '.join(first.unmet)}; most limiting {first.limiting_spec} "
+            f"(design margin {first.min_margin:.3g})"
+            + (f"; none of {settings.global_samples} sampled gain sets is feasible either"
+               if settings.global_samples else ""), first.unmet, first)
+    win = max(paths, key=lambda p: (p["best"].crossover_min, _achieved(p["best"])))
+    best = win["best"]
+    # stage 3: push the winner along its gain ratios under its final boundaries
+    final_specs = specs_factory(best.crossover_min, best.drb_min)
+    g_ext, _, _ = extend_along_ray(best.designs, final_specs, best.design.gains, settings.tolerance)
+    if g_ext is not best.design.gains:
+        best = _scored(designs, final_specs, g_ext, best.crossover_min, best.drb_min, labels)
     bar.close()
     _verify_all(best.designs, settings)
     history = pd.DataFrame(rows)
+    hi, upper = win["hi"], win["upper"]
+    origin = win["path"] + (", pushed along its gain ratios" if g_ext is not win["best"].design.gains else "")
     if hi is None:
         limiting = []
         msg = (f"DMO stopped at the step limit ({settings.max_steps} expanding steps): crossover boundary "
@@ -532,5 +649,14 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
         msg = (f"DMO converged to {settings.tolerance:.1%}: crossover boundary {best.crossover_min:.4g} rad/s "
                f"feasible, {crossover_start * hi:.4g} not; limiting spec(s): {', '.join(limiting)}; "
                f"most limiting at the design: {best.limiting_spec} (margin {best.min_margin:.3g})")
+    msg += f"; from the {origin}"
+    if not settings.global_samples:
+        msg += "; local answer only (no global stage)"
     return DMOResult(best.design, best.designs, best.specs, history, limiting, time.perf_counter() - t0, msg,
-                     settings.tolerance)
+                     settings.tolerance, samples=samples, candidates=extended, origin=origin,
+                     local_only=not settings.global_samples, crossover_boundary=best.crossover_min,
+                     drb_boundary=best.drb_min)
+
+
+def _achieved(res):
+    return float(res.specs.loc[res.specs.spec == "CrsMnG2", "value"].min())

@@ -17,6 +17,8 @@ L = C G S.  phi'/phi_d = 1/(1+L).  p/delta = G s CM (Pinv + e^{-tau s} C)/(1+L).
 """
 from __future__ import annotations
 
+import warnings
+
 from dataclasses import dataclass, replace
 
 import control
@@ -25,7 +27,7 @@ from scipy.optimize import least_squares
 
 from .plants import DelayedLTI, _check_siso
 
-__all__ = ["CommandModel", "PIDGains", "FrequencyFunction", "EMFDesign",
+__all__ = ["CommandModel", "PIDGains", "FrequencyFunction", "EMFDesign", "NegativeDelayWarning",
            "fit_inverse_plant", "fit_equivalent_delay"]
 
 
@@ -106,7 +108,7 @@ def fit_inverse_plant(response, omega_range=(1.0, 12.0), order="0/1", n_points=4
     deg squared, on ``n_points`` log-spaced frequencies in ``omega_range``
     [rad/s] (1-12 rad/s in the dissertation).  Returns a :class:`control.TransferFunction`.
     """
-    w = np.geomspace(*omega_range, n_points)
+    w = np.geomspace(*_fit_range(omega_range, "omega_range"), n_points)
     h = FrequencyFunction(response).response(w) if callable(response) and not hasattr(response, "response") \
         else response.response(w) if hasattr(response, "response") else np.squeeze(control.frequency_response(response, w).complex)
 
@@ -144,12 +146,37 @@ def fit_equivalent_delay(response, omega_range=(1.0, 12.0), n_points=40):
     Least squares on phase: tau = -sum(w phi) / sum(w^2), with phi the unwrapped
     phase [rad].  Returns tau [s].
     """
-    w = np.geomspace(*omega_range, n_points)
+    w = np.geomspace(*_fit_range(omega_range, "omega_range"), n_points)
     h = response.response(w)
     phase = np.unwrap(np.angle(h))
     # remove any 360-deg offset at the low end before the fit
     phase = phase - 2 * np.pi * np.round(phase[0] / (2 * np.pi))
-    return float(max(0.0, -np.sum(w * phase) / np.sum(w ** 2)))
+    tau = float(-np.sum(w * phase) / np.sum(w ** 2))
+    if tau < 0:
+        # a phase lead over the band: the inverse-plant fit leaves more lag than the
+        # response has. Synchronising with a negative delay is not realisable, so the
+        # feed-forward uses none; say so rather than clip silently
+        warnings.warn(f"equivalent delay fitted as {tau * 1e3:.3g} ms (< 0: the response leads the "
+                      f"inverse-plant model over {omega_range[0]:g}-{omega_range[1]:g} rad/s); tau_eq = 0 "
+                      "is used", NegativeDelayWarning, stacklevel=2)
+        return 0.0
+    return tau
+
+
+class NegativeDelayWarning(UserWarning):
+    """The fitted equivalent delay was negative and 0 is used instead."""
+
+
+def _fit_range(omega_range, name):
+    """Validated (low, high) frequency band [rad/s] for a fit on a log grid."""
+    try:
+        lo, hi = (float(v) for v in omega_range)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be (low, high) in rad/s, got {omega_range!r}") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
+        raise ValueError(f"{name} must be (low, high) with 0 < low < high rad/s (a log-spaced fit "
+                         f"grid cannot include 0), got {omega_range!r}")
+    return lo, hi
 
 
 class EMFDesign:
@@ -321,7 +348,8 @@ class EMFDesign:
         # K_Iphi = 0: no integrator state (it would be an unobservable pole at 0)
         c = (control.tf([k.K_p, k.K_phi, k.K_Iphi], [1.0, 0.0, 0.0]) if k.K_Iphi != 0
              else control.tf([k.K_p, k.K_phi], [1.0, 0.0]))
-        sensor = control.tf(*control.pade(self.sensor_delay, pade_order)) if self.sensor_delay > 0 else 1
+        sensor = (control.tf(*control.pade(self.sensor_delay, pade_order)) if self.sensor_delay > 0
+                  else control.tf([1.0], [1.0]))
         return control.series(self.plant.to_statespace(pade_order), control.ss(self.actuator),
                               control.ss(sensor), control.ss(c))
 

@@ -100,6 +100,16 @@ def search_designs(design, specs=None, n_scale=15, scale_span=(0.2, 5.0), integr
     specs = default_specs() if specs is None else specs
     if n_scale < 2 or n_ratio < 2:
         raise ValueError("n_scale and n_ratio must be >= 2")
+    for name, span in (("scale_span", scale_span), ("integral_ratios", integral_ratios),
+                       ("rate_ratios", rate_ratios)):
+        try:
+            lo, hi = (float(v) for v in span)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be (low, high), got {span!r}") from None
+        if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
+            raise ValueError(f"{name} must be (low, high) with 0 < low < high, got {span!r}")
+    if not np.isfinite(reference_frequency) or reference_frequency <= 0:
+        raise ValueError(f"reference_frequency must be > 0 rad/s, got {reference_frequency!r}")
     t0 = time.perf_counter()
     w_ref = reference_frequency
     k0 = _gain_scale(designs, w_ref)

@@ -11,6 +11,8 @@
     ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
     tilt_coupling.py (not re-exported): TiltCoupledHelicopter / helicopter_for, which
         feed a TiltInflow the flapping states as tip-path-plane tilts
+    control_phase.py (not re-exported): cyclic_moment_shares(sys, config) and
+        derive_control_phase(sys, config), which cyclic acts on which axis
     hold.py (not re-exported): hold_states(sys, ["u", "v"]), states held at trim
         (a perfectly tight outer loop)
 """

@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from .._validation import real as _real
-from .mixing import PILOT_INPUTS, mixing_matrix
+from .mixing import mixing_matrix, pilot_inputs
 
 __all__ = ["linearize", "modes", "default_steps", "NotAtTrimError", "NotAtTrimWarning",
            "LinearizeInputError", "trim_derivatives"]
@@ -83,8 +83,9 @@ def linearize(trim_result, inputs="pilot", step_scale=1.0, control_step=1e-5, *,
     Parameters
     ----------
     trim_result : TrimResult
-    inputs : ``"pilot"`` (delta_col, delta_lon, delta_lat, delta_ped, delta_prop via
-        Eq. 7.19 mixing; coaxial only) or ``"rotor"`` (the rotor controls).
+    inputs : ``"pilot"`` (delta_col, delta_lon, delta_lat, delta_ped, and delta_prop on
+        the coaxial, through the mixing of :mod:`aircraft.helicopter.mixing` with the
+        aircraft's control phase) or ``"rotor"`` (the rotor controls).
     step_scale : float
         Multiplies the default perturbation sizes (convergence checks).
     control_step : float
@@ -151,10 +152,8 @@ def linearize(trim_result, inputs="pilot", step_scale=1.0, control_step=1e-5, *,
         b[:, j] = (heli.derivatives(x0, u0 + e) - heli.derivatives(x0, u0 - e)) / (2 * e[j])
     names = heli.input_names
     if inputs == "pilot":
-        if not heli.config.is_coaxial:
-            raise ValueError("pilot inputs (Eq. 7.19) are defined for the coaxial; use inputs='rotor'")
-        b = b @ mixing_matrix()
-        names = PILOT_INPUTS
+        b = b @ mixing_matrix(heli.config)
+        names = pilot_inputs(heli.config)
     sys = control.ss(a, b, np.eye(n), np.zeros((n, len(names))), states=heli.state_names,
                      inputs=list(names), outputs=list(heli.state_names), name="helicopter")
     sys.trim = trim_result

@@ -23,7 +23,7 @@ from scipy.optimize import least_squares
 
 from .._validation import integer as _integer, real as _real
 from ..inflow.pitt_peters import InflowError
-from .mixing import PILOT_INPUTS, mixing_matrix
+from .mixing import lateral_cyclic_difference_controls, mixing_matrix, pilot_inputs
 from .model import Helicopter
 
 __all__ = ["TrimCondition", "TrimResult", "TrimError", "TrimInputError", "trim"]
@@ -54,8 +54,10 @@ class _BudgetExceeded(Exception):
 class TrimCondition:
     """speed [m/s] (level flight), rotor_aoa [rad] (forward flight, shaft angle to the
     flight path, positive nose up), lateral_cyclic_difference [rad]: the
-    differential cyclic held fixed at trim to set the lift offset (§7.2; the same
-    own-frame theta1c on both rotors, see ``_controls``)."""
+    differential lateral cyclic held fixed at trim to set the lift offset (§7.2), paired
+    with the aircraft's control phase like the lateral stick: positive moves each
+    rotor's lift towards its own advancing side
+    (:func:`aircraft.helicopter.mixing.lateral_cyclic_difference_controls`)."""
 
     speed: float = 0.0
     rotor_aoa: float = np.radians(2.0)
@@ -89,24 +91,18 @@ class TrimResult:
         h = self.helicopter
         rows = [("state", n, v) for n, v in zip(h.state_names, self.x)]
         rows += [("control", n, v) for n, v in zip(h.input_names, self.u)]
-        if h.config.is_coaxial:
-            rows += [("pilot", n, v) for n, v in zip(PILOT_INPUTS, self.pilot)]
+        rows += [("pilot", n, v) for n, v in zip(pilot_inputs(h.config), self.pilot)]
         rows += [("load", k, float(v)) for k, v in self.loads.items() if np.isscalar(v)]
         return pd.DataFrame(rows, columns=["kind", "name", "value"])
 
 
 def _controls(heli, pilot, condition):
-    if heli.config.is_coaxial:
-        u = mixing_matrix() @ pilot
-        # differential (lift-offset) cyclic: the same own-frame theta1c on both
-        # rotors. Each rotor then loads the same side of its own azimuth, which in
-        # body axes are opposite sides, so the roll moments cancel (lift offset).
-        # Equal/opposite own-frame theta1c is the lateral stick, equal theta1s the
-        # longitudinal stick (mixing.py), so this input is orthogonal to both.
-        u[2] += condition.lateral_cyclic_difference / 2
-        u[5] += condition.lateral_cyclic_difference / 2
-        return u
-    return np.asarray(pilot, float)
+    """Rotor controls of the pilot inputs (mixing with the aircraft's control phase), plus the
+    coaxial's differential lateral cyclic (lift-offset control), paired the same way."""
+    u = mixing_matrix(heli.config) @ pilot
+    if heli.config.is_coaxial and condition.lateral_cyclic_difference:
+        u = u + lateral_cyclic_difference_controls(heli.config, condition.lateral_cyclic_difference)
+    return u
 
 
 def _check_blade_loading(heli):
