@@ -97,6 +97,14 @@ def _chart_name(mte, uce, attention):
 def bandwidth_chart(axis, mte="all other", uce=1, attention="fully attended"):
     """The hover/low-speed bandwidth chart for an axis and MTE class.
 
+    Parameters
+    ----------
+    axis : {"pitch", "roll", "yaw"}
+    mte : {"target acquisition and tracking", "all other"}
+    uce : int
+        Usable cue environment, 1 to 3.
+    attention : {"fully attended", "divided"}
+
     Returns
     -------
     (LevelRegions or None, str, str)

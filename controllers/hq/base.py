@@ -26,7 +26,7 @@ from .boundaries import BoundaryNotPublishedError, LevelRegions
 __all__ = ["HQSpec", "RegionSpec", "STATUSES", "AXES", "SPEEDS", "MTE_CLASSES", "AGILITIES", "ATTENTIONS"]
 
 #: how a spec's boundary numbers are known
-STATUSES = ("printed", "approximate", "partial", "not found")
+STATUSES = ("printed", "approximate", "partial", "not found", "design", "objective")
 #: axis names of the library (signal-name checks are the design's business)
 AXES = ("pitch", "roll", "yaw", "heave")
 #: flight regimes
@@ -68,7 +68,9 @@ class HQSpec(Spec):
         ``"partial"`` (only the Level 1 boundary was found: ``level2`` is NaN,
         the spec tells Level 1 from "not Level 1"), ``"not found"`` (no
         printed value found: evaluating raises
-        :class:`~controllers.hq.boundaries.BoundaryNotPublishedError`).
+        :class:`~controllers.hq.boundaries.BoundaryNotPublishedError`),
+        ``"design"`` (a design parameter, e.g. the DMO's crossover boundary)
+        or ``"objective"`` (no boundary).
     test : str
         The test that checks the boundary numbers and the metric.
     level3 : float
@@ -117,11 +119,12 @@ class HQSpec(Spec):
         if self.status == "not found":
             return "not found printed"
         op = ">=" if self.direction == "min" else "<="
-        text = f"L1 {op} {self.level1:g}"
-        text += f"; L2 {op} {self.level2:g}" if np.isfinite(self.level2) else "; L2 not found printed"
+        u = f" {self.units}" if self.units and self.units != "-" else ""
+        text = f"L1 {op} {self.level1:g}{u}"
+        text += f"; L2 {op} {self.level2:g}{u}" if np.isfinite(self.level2) else "; L2 not found printed"
         if np.isfinite(self.level3):
-            text += f"; L3 {op} {self.level3:g}"
-        return text + (f" {self.units}" if self.units else "")
+            text += f"; L3 {op} {self.level3:g}{u}"
+        return text
 
     def _input(self, obj):
         return (self.response or _identity)(obj)

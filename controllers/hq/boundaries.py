@@ -87,6 +87,17 @@ def signed_distance(point, polygon, scale=(1.0, 1.0)):
 
     Both the point and the polygon are divided by ``scale`` first.
 
+    Parameters
+    ----------
+    point : (float, float)
+    polygon : array_like, shape (n, 2)
+    scale : (float, float)
+        Axis units: distances are measured in multiples of them.
+
+    Returns
+    -------
+    float
+
     Examples
     --------
     >>> round(signed_distance((0.5, 0.5), [(0, 0), (1, 0), (1, 1), (0, 1)]), 6)
