@@ -159,7 +159,8 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
 
     gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
     pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]
-    bw1, bw2, tau1, tau2 = BANDWIDTH_LIMITS[("roll", canonical_mte(mte))]
+    mte = canonical_mte(mte)
+    bw1, bw2, tau1, tau2 = BANDWIDTH_LIMITS[("roll", mte)]
     return [
         Spec("EigLcG1", "all eigenvalues in the left half plane", _max_real_pole, "max", 0.0, 0.0,
              kind="hard", units="1/s", source="generic", needs_stable=False),
