@@ -277,9 +277,14 @@ def test_generic_specs_match_table_7_3():
     assert (gen["EigDpG1.lo"].level1, gen["EigDpG1.hi"].level1) == (0.35, 0.1)
     assert gen["DrbRoH1"].level1 == 0.9 and gen["DrbRoH1"].axis == "roll" and "§7.5.1" in gen["DrbRoH1"].source
     assert all(gen[n].status == "not found" for n in ("DrbPiH1", "DrbYaH1", "DrbHeH1"))
-    assert gen["OlpOpG1.pilot"].status == "not found" and "ActuatorLimits" in gen["OlpOpG1.pilot"].source
+    olop = gen["OlpOpG1.pilot"]
+    assert not olop.available and "ActuatorLimits" in olop.missing_input and olop.level1 == 0.0
+    with pytest.raises(ValueError, match="needs ActuatorLimits"):
+        olop.evaluate(None)
     with_limits = {s.name: s for s in generic_specs(ActuatorLimits(1.0, 0.5, 0.05, np.radians(1.0)))}
-    assert with_limits["OlpOpG1.pilot"].status == with_limits["OlpOpG1.dist"].status == "approximate"
+    assert with_limits["OlpOpG1.pilot"].available and with_limits["OlpOpG1.dist"].available
+    only_pilot = {s.name: s for s in generic_specs(ActuatorLimits(1.0, 0.5, 0.05))}
+    assert only_pilot["OlpOpG1.pilot"].available and not only_pilot["OlpOpG1.dist"].available
 
 
 def test_olop_with_actuator_limits():
@@ -356,6 +361,13 @@ def test_specs_from_the_library_grade_a_design_in_evaluate_specs():
     assert table.loc["BnwAtH1.roll", "level"] == base.loc["BnwAtH1", "level"]
     fig = controllers.hq_window([design], [s for s in specs if s.kind != "objective"][:6], labels=["(A) test"])
     assert isinstance(fig, Figure)
+    # with the actuator's limits the OLOP specs join the list and grade the design
+    limits = ActuatorLimits(rate_limit=1.0, position_limit=0.2, stick_amplitude=0.05, disturbance_amplitude=0.02)
+    olop = [s for s in specs_for("roll", missing="skip", limits=limits) if s.name.startswith("OlpOpG1")]
+    assert [s.name for s in olop] == ["OlpOpG1.pilot", "OlpOpG1.dist"]
+    rows = evaluate_specs(design, olop).set_index("spec")
+    expected = olop_margin(design.broken_loop(), design.mixer_response_pilot(), 0.05, limits)
+    assert rows.loc["OlpOpG1.pilot", "value"] == expected
 
 
 def test_spec_table_matches_the_committed_csv_and_names_existing_tests():

@@ -75,6 +75,9 @@ class HQSpec(Spec):
         The test that checks the boundary numbers and the metric.
     level3 : float
         An extra published limit beyond Level 2 (informational), NaN if none.
+    missing_input : str
+        What the spec still needs before it can grade (e.g. actuator limits);
+        empty when complete.  Such a spec is not :attr:`available`.
     """
 
     family: str = ""
@@ -89,6 +92,7 @@ class HQSpec(Spec):
     status: str = "printed"
     test: str = ""
     level3: float = np.nan
+    missing_input: str = ""
 
     def __post_init__(self):
         if self.status not in STATUSES:
@@ -109,8 +113,8 @@ class HQSpec(Spec):
 
     @property
     def available(self):
-        """Whether the spec can grade a design (its boundaries are known)."""
-        return self.status != "not found"
+        """Whether the spec can grade a design (boundaries known, inputs complete)."""
+        return self.status != "not found" and not self.missing_input
 
     def boundary_text(self):
         """The boundary values as one line of text (for tables)."""
@@ -137,9 +141,15 @@ class HQSpec(Spec):
             f"spec {self.name!r} ({self.description}): its boundary values were not found printed "
             f"(source: {self.source}); give the spec Level boundaries read from the source before grading")
 
+    def _check_inputs(self):
+        if self.missing_input:
+            raise ValueError(f"spec {self.name!r} ({self.description}) cannot be evaluated: it needs "
+                             f"{self.missing_input}")
+
     def evaluate(self, design):
         if self.status == "not found":
             raise self._unpublished()
+        self._check_inputs()
         if np.isfinite(self.level2) or self.kind == "objective":
             return super().evaluate(design)
         v = self.value(design)

@@ -212,7 +212,8 @@ def generic_specs(limits=None, crossover_min=2.0, drb_min=0.9):
     ----------
     limits : ActuatorLimits, optional
         Actuator limits for the OLOP specs; without them the OLOP specs are
-        returned with status ``"not found"`` (their inputs are missing).
+        returned not :attr:`~controllers.hq.base.HQSpec.available` (their
+        ``missing_input`` names what they need).
     crossover_min : float
         CrsMnG2 Level 1 boundary [rad/s] (a DMO design parameter).
     drb_min : float
@@ -247,9 +248,10 @@ def generic_specs(limits=None, crossover_min=2.0, drb_min=0.9):
         out.append(HQSpec(f"OlpOpG1.{kind}", f"open-loop onset point, {kind} input, actuator rate/position limits "
                           "(dB below the approximate Level 1 line)", metric, "min", 0.0, -6.0, units="dB",
                           source="Duda 1997 OLOP criterion (CONDUIT OlpOpG1); approximate Level 1 line, chart not "
-                                 "found printed" + ("" if have else "; inputs missing: give ActuatorLimits"),
-                          family="generic", axis="any", status="approximate" if have else "not found",
-                          test=_TEST_OLOP))
+                                 "found printed; Level 2 at -6 dB carried over from the toolkit's earlier specs",
+                          family="generic", axis="any", status="approximate", test=_TEST_OLOP,
+                          missing_input="" if have else f"ActuatorLimits (rate/position limits and the {kind} "
+                                                        "input amplitude)"))
     out.append(HQSpec("ModFoG2", "model-following cost J, closed-loop vs commanded attitude, 1-10 rad/s",
                       lambda d: model_following_cost(d.attitude_response(), d.commanded_attitude()), "max",
                       kind="objective", units="-",

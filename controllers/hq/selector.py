@@ -103,8 +103,8 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
         Actuator limits for the OLOP specs.
     missing : {"raise", "skip", "keep"}
         What to do with applicable specs whose boundaries were not found
-        printed: raise :class:`BoundaryNotPublishedError` naming them
-        (default), leave them out (``"skip"``, an explicit choice), or
+        printed (or that miss an input, e.g. the OLOP's actuator limits):
+        raise :class:`BoundaryNotPublishedError` naming them (default), leave them out (``"skip"``, an explicit choice), or
         return them (``"keep"``, for tables and charts; evaluating one raises).
     generic : bool
         Include the CONDUIT generic specs (stability, margins, DRB/DRP, ...).
@@ -148,10 +148,11 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
               and s.applies_to(axis, mte, agility, uce, attention, speed)]
     absent = [s for s in chosen if not s.available]
     if absent and missing == "raise":
-        lines = "\n".join(f"  {s.name}: {s.description} -- {s.source}" for s in absent)
+        lines = "\n".join(f"  {s.name}: {s.description} -- " + (f"needs {s.missing_input}" if s.missing_input
+                                                                   else s.source) for s in absent)
         raise BoundaryNotPublishedError(
             f"{len(absent)} spec(s) for axis={axis!r}, mte={mte!r}, uce={uce}, attention={attention!r}, "
-            f"speed={speed!r}, agility={agility!r} have no printed boundary values:\n{lines}\n"
+            f"speed={speed!r}, agility={agility!r} have no printed boundary values or miss inputs:\n{lines}\n"
             "pass missing='skip' to leave them out or missing='keep' to list them")
     if missing == "skip":
         chosen = [s for s in chosen if s.available]

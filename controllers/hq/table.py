@@ -8,7 +8,7 @@ from .selector import all_specs
 __all__ = ["spec_table", "TABLE_COLUMNS"]
 
 TABLE_COLUMNS = ("name", "family", "axis", "speeds", "mte", "agility", "uce_attention", "kind", "status",
-                 "boundaries", "units", "source", "test", "description")
+                 "boundaries", "units", "needs", "source", "test", "description")
 
 
 def _uce_attention(spec):
@@ -44,6 +44,6 @@ def spec_table(specs=None):
                      "mte": "any" if len(s.mtes) > 1 else s.mtes[0],
                      "agility": "any" if len(s.agilities) > 1 else s.agilities[0],
                      "uce_attention": _uce_attention(s), "kind": s.kind, "status": s.status,
-                     "boundaries": s.boundary_text(), "units": s.units, "source": s.source, "test": s.test,
+                     "boundaries": s.boundary_text(), "units": s.units, "needs": s.missing_input, "source": s.source, "test": s.test,
                      "description": s.description})
     return pd.DataFrame(rows, columns=list(TABLE_COLUMNS))
