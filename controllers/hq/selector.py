@@ -96,7 +96,7 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
         Usable cue environment.
     attention : {"fully attended", "divided"}
     speed : {"hover", "forward"}
-        Hover/low speed or forward flight.
+        Flight regime [a name, not a number]: hover/low speed or forward flight.
     agility : {"limited", "moderate", "aggressive"}
         Agility class of the large-amplitude and coupling requirements.
     limits : ActuatorLimits, optional
