@@ -343,7 +343,14 @@ def test_selector_errors_name_the_valid_choices():
     bw = _by_name(got, "BnwAtH1.roll")
     assert bw.regions.level((2.6, 0.11)) == 1 and bw.regions.level((2.2, 0.11)) == 2   # the tracking chart
     divided = specs_for("roll", uce=2, missing="keep")
-    assert _by_name(divided, "BnwAtH1.roll").status == "not found"
+    unpublished = _by_name(divided, "BnwAtH1.roll")
+    assert unpublished.status == "not found"
+    # a user with the printed chart supplies its polygons; the spec then grades like any other
+    import dataclasses
+    supplied = dataclasses.replace(unpublished, regions=rectangle_regions(3.0, 2.0, 0.15, 0.25), status="printed")
+    assert supplied.evaluate(lambda s: np.exp(-0.1 * s) / s)["level"] == 1      # 7.85 rad/s, 0.05 s
+    with pytest.raises(ValueError, match="needs LevelRegions"):
+        dataclasses.replace(unpublished, status="printed")
 
 
 def test_specs_from_the_library_grade_a_design_in_evaluate_specs():

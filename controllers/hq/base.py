@@ -175,10 +175,12 @@ class RegionSpec(HQSpec):
     undefined: tuple = field(default=())
 
     def __post_init__(self):
-        if self.status != "not found" and self.regions is None:
-            raise ValueError(f"spec {self.name!r}: a region spec with status {self.status!r} needs regions")
         if self.status not in STATUSES:
             raise ValueError(f"spec {self.name!r}: status must be one of {STATUSES}, got {self.status!r}")
+        if self.kind not in ("hard", "soft"):
+            raise ValueError(f"spec {self.name!r}: a region spec is 'hard' or 'soft', got {self.kind!r}")
+        if self.status != "not found" and not isinstance(self.regions, LevelRegions):
+            raise ValueError(f"spec {self.name!r}: a region spec with status {self.status!r} needs LevelRegions")
 
     def value(self, design):
         x, y = self.metric(self._input(design))
