@@ -8,6 +8,8 @@
             │                                bandwidth/phase delay, damping, RMS)
             ├─ control.interconnect state space (Padé) ─► poles, time responses
             └─ specs (Table 7.3) ─► evaluate_specs ─► hq_window
+    hq: spec library (every axis, ADS-33E-PRF boundaries as data, provenance per spec):
+        specs_for(axis, mte=..., uce=..., attention=..., speed=...), spec_table()
     dmo(design or [designs]): CasADi/IPOPT, boundaries raised by bisection to a
                  tolerance, several starts per step, every result re-checked with
                  python-control; search_designs: independent dense search
@@ -26,6 +28,7 @@ from .dmo import (DMOResult, DMOSettings, InfeasibleDesignError, OptimizationRes
                   VerificationError, design_margins, dmo, optimize)
 from .search import SearchResult, search_designs
 from .hqwindow import hq_window
+from .hq import BoundaryNotPublishedError, HQSpec, spec_table, specs_for
 
 __all__ = [
     "HOVER_ROLL_CONSTRAINTS", "DelayedLTI", "first_order_actuator", "hover_roll_plant",
@@ -40,4 +43,5 @@ __all__ = [
     "VerificationError", "design_margins", "dmo", "optimize",
     "SearchResult", "search_designs",
     "hq_window",
+    "specs_for", "spec_table", "HQSpec", "BoundaryNotPublishedError",
 ]

@@ -1,7 +1,9 @@
 """CONDUIT-style "HQ window": every spec on its own chart with Level 1/2/3 regions.
 
 Each panel names its spec (CONDUIT short name, what it measures, hard/soft) and
-its source; the Level 1/2/3 regions share one legend; each design's point is
+its source; 2-D specs of :mod:`controllers.hq` are drawn from their Level
+polygons, and a spec whose Level 2/3 boundary is not published shows Level 1
+and a hatched "not Level 1" band; the Level 1/2/3 regions share one legend; each design's point is
 labelled on every panel.  A Nichols chart of the broken loops shows the
 exclusion boundary (the NicMgG1 ellipse and the GM/PM points).
 """
@@ -11,7 +13,7 @@ import textwrap
 
 import numpy as np
 from matplotlib.figure import Figure
-from matplotlib.patches import Ellipse, Patch, Rectangle
+from matplotlib.patches import Ellipse, Patch, Polygon, Rectangle
 
 from .metrics import frequency_response_of
 
@@ -39,6 +41,8 @@ def _title(ax, spec):
 def _scalar_panel(ax, spec, results, labels, colors):
     vals = np.array([r["value"] for r in results], float)
     b1, b2 = spec.level1, spec.level2
+    partial = not np.isfinite(b2)   # Level 2/3 boundary not published: Level 1 or "not Level 1"
+    b2 = b1 if partial else b2
     span = abs(b1 - b2) or max(abs(b1), 1.0)
     finite = vals[np.isfinite(vals)]
     lo = min([b1, b2] + [max(v, min(b1, b2) - 3 * span) for v in finite]) - 0.6 * span
@@ -48,7 +52,9 @@ def _scalar_panel(ax, spec, results, labels, colors):
     else:
         bands = [(lo, b1, 1), (b1, b2, 2), (b2, hi, 3)]
     for a, b, lev in bands:
-        if b > a:
+        if b > a and partial and lev != 1:
+            ax.axvspan(a, b, fc="none", ec="0.5", hatch="///", lw=0)
+        elif b > a:
             ax.axvspan(a, b, color=_COLORS[lev], lw=0)
     n = max(len(vals), 1)
     for k, (v, r) in enumerate(zip(vals, results)):
@@ -88,6 +94,28 @@ def _bandwidth_panel(ax, spec, results, labels, colors):
     ax.tick_params(labelsize=6)
     ax.set_xlabel("bandwidth [rad/s]", fontsize=6, labelpad=1)
     ax.set_ylabel("phase delay [s]", fontsize=6)
+
+
+def _region_panel(ax, spec, results, labels, colors):
+    """A 2-D chart (e.g. ADS-33E-PRF bandwidth vs phase delay) drawn from the spec's polygons."""
+    r = spec.regions
+    (x0, x1), (y0, y1) = r.limits or ((0.0, 10.0), (0.0, 1.0))
+    ax.add_patch(Polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True, color=_COLORS[3], lw=0))
+    ax.add_patch(Polygon(r.level2, closed=True, color=_COLORS[2], lw=0))
+    ax.add_patch(Polygon(r.level1, closed=True, color=_COLORS[1], lw=0))
+    for k, res in enumerate(results):
+        x, y = res["value"], res.get("phase_delay", np.nan)
+        if not (np.isfinite(x) and np.isfinite(y)):
+            ax.text(0.05, 0.9 - 0.1 * k, f"{_short(labels[k])}: n/a", transform=ax.transAxes, fontsize=6)
+            continue
+        shown = (float(np.clip(x, x0, x1)), float(np.clip(y, y0, y1)))
+        ax.plot(*shown, _MARKERS[k % 7], color=colors[k], ms=6, mec="k", mew=0.5)
+        ax.annotate(_short(labels[k]), shown, xytext=(4, 3), textcoords="offset points", fontsize=6)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.tick_params(labelsize=6)
+    ax.set_xlabel(r.x_label, fontsize=6, labelpad=1)
+    ax.set_ylabel(r.y_label, fontsize=6)
 
 
 def _nichols_panel(ax, designs, labels, colors, gm_db=6.0, pm_deg=45.0):
@@ -162,7 +190,9 @@ def hq_window(designs, specs, labels=None, fig=None, ncols=4, nichols=True):
         for t in tables:
             row = t.loc[spec.name]
             results.append({"value": row.value, "phase_delay": row.phase_delay, "status": row.status})
-        if hasattr(spec, "tau1"):
+        if getattr(spec, "regions", None) is not None:
+            _region_panel(ax, spec, results, labels, colors)
+        elif hasattr(spec, "tau1"):
             _bandwidth_panel(ax, spec, results, labels, colors)
         else:
             _scalar_panel(ax, spec, results, labels, colors)

@@ -144,16 +144,23 @@ def _max_real_pole(design):
 def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.05, olop_rate=1.0):
     """The roll-axis spec set of Table 7.3 (see module docstring for sources).
 
+    ``mte`` names the ADS-33E-PRF MTE class of the bandwidth chart, exactly
+    and case-insensitively: ``"target acquisition and tracking"`` or
+    ``"all other"`` (alias ``"all other MTEs"``); any other name raises
+    :class:`ValueError` listing the valid ones.  The bandwidth boundaries come
+    from :data:`controllers.hq.bandwidth.BANDWIDTH_LIMITS`.
+
     ``olop_stick`` [stick units] and ``olop_rate`` [mixer units/s] set the
     open-loop-onset-point check (full-stick sinusoid against the actuator rate
     limit); the defaults are placeholders for the hand-written and coaxial plants.
     """
+    from .hq.bandwidth import BANDWIDTH_LIMITS   # one definition of the bandwidth boundaries
+    from .hq.selector import canonical_mte       # exact, case-insensitive names; unknown ones raise
+
     gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
     pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]
-    if mte.startswith("target"):
-        bw1, bw2, tau1, tau2 = 2.5, 1.5, 0.12, 0.20
-    else:
-        bw1, bw2, tau1, tau2 = 2.0, 1.0, 0.20, 0.30
+    mte = canonical_mte(mte)
+    bw1, bw2, tau1, tau2 = BANDWIDTH_LIMITS[("roll", mte)]
     return [
         Spec("EigLcG1", "all eigenvalues in the left half plane", _max_real_pole, "max", 0.0, 0.0,
              kind="hard", units="1/s", source="generic", needs_stable=False),
