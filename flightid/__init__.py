@@ -7,9 +7,11 @@ a flight-test record or a wind-tunnel record.
 
     frequency_sweep / doublet / multistep_3211          (test inputs)
     orthogonal_multisine                                (all inputs in one record)
+    read_flight_data ─► FlightRecord (DataFrame/CSV, units, resample, detrend)
               │ time histories t, u, y
               ▼
     frequency_response ─► MeasuredResponse (FRD + coherence)   chirp-z, composite windows
+    concatenated_response (several runs of one axis: pooled spectra)
     mimo_response / harmonic_response ─► MIMOResponse           simultaneous inputs (G_yu G_uu^-1)
               │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
               ▼
@@ -37,6 +39,7 @@ from .reduction import ReductionResult, reduce
 from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
 from .feedthrough import MLTauFeedthroughStructure
+from .flight_data import FlightRecord, concatenated_response, read_flight_data
 from .transformed import TransformedStructure, pair_costs, sum_difference_transform, transform_response
 
 __all__ = [
@@ -55,4 +58,5 @@ __all__ = [
     "VerificationResult", "theil_inequality", "verify",
     "MLTauFeedthroughStructure", "TransformedStructure", "pair_costs", "sum_difference_transform",
     "transform_response",
+    "FlightRecord", "concatenated_response", "read_flight_data",
 ]
