@@ -16,10 +16,13 @@ a flight-test record or a wind-tunnel record.
               │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
               ▼
     MLTauStructure / FGCStructure / GainDelayStructure  (free / fixed / tied parameters)
+    TransferFunctionStructure (fit_transfer_function, loes_fit); StateSpaceStructure (C, D too)
     MLTauFeedthroughStructure (+ direct D);  TransformedStructure (fit in other
               coordinates, e.g. sum/difference, with transform_response)
               │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability, multi-start;
               │       DegeneracyReport: flat directions, square-block singular values)
+              │ identify(method="cifer" | "output_error" | "equation_error"): a FlightRecord
+              │   by composite-window responses or by Fourier transforms of the whole record
               │ fit_staged (plan of Stage s, §6.4.3)
               │ reduce (automatic Fig. 6.1 loop; refuses removals without a finite optimum)
               ▼
@@ -40,6 +43,9 @@ from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
 from .feedthrough import MLTauFeedthroughStructure
 from .flight_data import FlightRecord, concatenated_response, read_flight_data
+from .transfer_function import TransferFunctionStructure, fit_transfer_function, loes_fit
+from .state_space import StateSpaceStructure
+from .fourier import identify
 from .transformed import TransformedStructure, pair_costs, sum_difference_transform, transform_response
 
 __all__ = [
@@ -59,4 +65,5 @@ __all__ = [
     "MLTauFeedthroughStructure", "TransformedStructure", "pair_costs", "sum_difference_transform",
     "transform_response",
     "FlightRecord", "concatenated_response", "read_flight_data",
+    "TransferFunctionStructure", "fit_transfer_function", "loes_fit", "StateSpaceStructure", "identify",
 ]

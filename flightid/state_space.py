@@ -12,7 +12,7 @@ accelerations are written directly, e.g. the short-period pair with states
 
 so one set of stability and control derivatives is fitted jointly to every
 output's response with :func:`flightid.fit` (CIFER cost, Cramér-Rao bounds,
-insensitivities, stability, reduction) or :func:`flightid.fourier_fit`.
+insensitivities, stability, reduction) or :func:`flightid.identify`.
 """
 from __future__ import annotations
 
