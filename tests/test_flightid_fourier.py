@@ -83,7 +83,8 @@ def test_output_error_standard_errors_match_monte_carlo(noise):
     # 25 %: with 200 repeats the scatter itself is known to ~5 %; the rest is left for the
     # estimator's nonlinearity at 30 % noise and the end effects of a 20 s record
     np.testing.assert_allclose(ratio, 1.0, atol=0.25)
-    # unbiased within 3 Monte Carlo standard errors of the mean
+    # unbiased within 3 Monte Carlo standard errors of the mean, plus 1e-3 for the transform's
+    # discretisation bias (steps sampled at 0.02 s: b0 low by ~3e-4 relative, visible at 1 % noise)
     bias = est.mean(axis=0) - [4.0, 2.0]
     assert np.all(np.abs(bias) < 3 * est.std(axis=0, ddof=1) / np.sqrt(200) + 1e-3)
 
