@@ -132,3 +132,33 @@ def test_concatenation_refuses_mixed_sample_times_and_missing_channels():
         concatenated_response([ra, rb], "u", "y", w_min=0.5, w_max=10.0)
     with pytest.raises(SignalNameError, match="records\\[0\\]"):
         concatenated_response([ra], "u", "z", w_min=0.5, w_max=10.0)
+
+
+def test_sweep_edge_cases_name_their_argument():
+    import warnings
+    from flightid import frequency_sweep
+    # fades longer than the sweep would overlap and make the envelope jump
+    with pytest.raises(InputValueError, match="fade_cycles"):
+        frequency_sweep(0.5, 10.0, 30.0, 0.01, fade_cycles=3.0)
+    # fades that fit: no step larger than the sine's own (amplitude w_max dt) between samples
+    t, u = frequency_sweep(0.5, 10.0, 60.0, 0.01, fade_cycles=2.0)
+    assert np.max(np.abs(np.diff(u))) <= 10.0 * 0.01 * 1.01
+    # 2 periods of w_min (what the sweep requires) are not the 4 frequency_response needs
+    with pytest.warns(UserWarning, match="frequency_response needs"):
+        t, u = frequency_sweep(0.5, 10.0, 4 * np.pi / 0.5, 0.01, trim_start=0.0, trim_end=0.0)
+    with pytest.raises(DataError, match="too short"):
+        frequency_response(t, u, u, w_min=0.5, w_max=10.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        frequency_sweep(0.5, 10.0, 60.0, 0.01)            # long enough: silent
+
+
+def test_fit_refuses_nan_initial_value():
+    from flightid import fit
+    from flightid.transfer_function import TransferFunctionStructure
+    t, u, y = _run(8)
+    data = frequency_response(t, u, y, w_min=1.0, w_max=10.0)
+    s = TransferFunctionStructure(0, 1, delay=False)
+    s.values["a0"] = float("nan")            # set behind the constructor's check
+    with pytest.raises(InputValueError, match="a0"):
+        fit(s, data)

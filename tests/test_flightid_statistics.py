@@ -67,7 +67,7 @@ def test_relative_rise_keeps_a_delay_the_data_pin_down():
 
 def test_joint_input_output_propagated_coherence_against_monte_carlo():
     from flightid import MeasuredResponse, joint_input_output
-    # u/theta with condition number ~1.9, every element at coherence 0.95; y/theta exact
+    # u/theta with condition number 2.7, every element at coherence 0.95; y/theta likewise
     # up to the same coherence; n_d = 20 averages
     U0 = np.array([[1.0, 0.45], [0.35, 0.8]], dtype=complex) * np.exp(0.3j)
     H0 = np.array([[2.0, 0.05]], dtype=complex)                     # a small off-axis element
