@@ -37,7 +37,6 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
 from scipy.signal import czt
-from threadpoolctl import threadpool_limits
 
 from ._validation import names_in, real_array, real_scalar
 from .degeneracy import hessian_report
@@ -191,21 +190,20 @@ def fourier_fit(structure, record, *, method="output_error", omega=None, w_min=N
     x = np.maximum(np.array([structure.values[n] for n in free]), lower)
     scale = np.sqrt(np.mean(np.abs(residual(dict(zip(free, x)))) ** 2, axis=1))
     scale = np.where(scale > 0, scale, 1.0)
-    with threadpool_limits(1):
-        for _ in range(int(max_iterations)):
-            fn = lambda v: _scaled(residual(dict(zip(free, v))), scale)      # noqa: E731
-            sol = least_squares(fn, x, bounds=(lower, np.full_like(x, np.inf)), x_scale="jac",
-                                xtol=1e-12, ftol=1e-12, max_nfev=200 * (len(x) + 1))
-            x = sol.x
-            new = np.sqrt(np.mean(np.abs(residual(dict(zip(free, x)))) ** 2, axis=1))
-            new = np.where(new > 0, new, 1.0)
-            settled = np.max(np.abs(new / scale - 1)) < 0.01
-            scale = new
-            if settled:
-                break
-        fn = lambda v: _scaled(residual(dict(zip(free, v))), scale)          # noqa: E731
-        jac = _jacobian(fn, x)
-        r = fn(x)
+    for _ in range(int(max_iterations)):
+        fn = lambda v: _scaled(residual(dict(zip(free, v))), scale)      # noqa: E731
+        sol = least_squares(fn, x, bounds=(lower, np.full_like(x, np.inf)), x_scale="jac",
+                            xtol=1e-12, ftol=1e-12, max_nfev=200 * (len(x) + 1))
+        x = sol.x
+        new = np.sqrt(np.mean(np.abs(residual(dict(zip(free, x)))) ** 2, axis=1))
+        new = np.where(new > 0, new, 1.0)
+        settled = np.max(np.abs(new / scale - 1)) < 0.01
+        scale = new
+        if settled:
+            break
+    fn = lambda v: _scaled(residual(dict(zip(free, v))), scale)          # noqa: E731
+    jac = _jacobian(fn, x)
+    r = fn(x)
     se = residual_scaled_errors(jac, r)
     s2 = float(r @ r) / max(r.size - len(free), 1)
     fitted = structure.with_values(dict(zip(free, x)))
