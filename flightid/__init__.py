@@ -42,7 +42,7 @@ from .reduction import ReductionResult, reduce
 from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
 from .feedthrough import MLTauFeedthroughStructure
-from .flight_data import FlightRecord, concatenated_response, read_flight_data
+from .flight_data import concatenated_response, read_flight_data
 from .transfer_function import TransferFunctionStructure, fit_transfer_function, loes_fit
 from .state_space import StateSpaceStructure
 from .fourier import identify
@@ -64,6 +64,6 @@ __all__ = [
     "VerificationResult", "theil_inequality", "verify",
     "MLTauFeedthroughStructure", "TransformedStructure", "pair_costs", "sum_difference_transform",
     "transform_response",
-    "FlightRecord", "concatenated_response", "read_flight_data",
+    "concatenated_response", "read_flight_data",
     "TransferFunctionStructure", "fit_transfer_function", "loes_fit", "StateSpaceStructure", "identify",
 ]

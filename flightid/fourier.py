@@ -26,7 +26,7 @@ residuals with the estimated S_i. With the default frequencies (spaced by the
 record's resolution 2 pi / T) the residuals of white measurement noise are
 uncorrelated, which the Monte Carlo tests check.
 
-:func:`identify` takes a :class:`~flightid.FlightRecord` and a structure and
+:func:`identify` takes a :class:`~flightid.flight_data.FlightRecord` and a structure and
 runs the path that ``method`` names -- ``"cifer"`` (frequency responses with
 coherence, then :func:`flightid.fit`), ``"output_error"`` or
 ``"equation_error"`` -- and returns a :class:`~flightid.FitResult` either way.

@@ -136,3 +136,24 @@ def test_equation_error_recovers_short_period_and_same_result_kind():
                               inputs=["u"], outputs=["y0", "y1"], initial=SP)
     with pytest.raises(InputValueError, match="states measured"):
         identify(acc, rec, method="equation_error", w_min=0.4, w_max=12.0)
+
+
+def test_identify_cifer_path_concatenates_runs_and_returns_the_same_kind():
+    from flightid import frequency_sweep
+    s = TransferFunctionStructure(0, 1, delay=False, initial={"b0": 3.0, "a0": 1.5})
+    records = []
+    for seed in (1, 2):
+        t, u = frequency_sweep(0.3, 20.0, 60.0, DT, trim_start=10.0, noise_fraction=0.2, seed=seed)
+        y = lsim(([4.0], [1.0, 2.0]), u, t)[1]
+        y = y + 0.05 * np.std(y) * np.random.default_rng(seed).standard_normal(t.size)
+        records.append(_record(t, u, y))
+    cifer = identify(s, records, method="cifer", w_min=0.5, w_max=10.0)
+    oe = identify(s, records[0], method="output_error", w_min=0.3, w_max=10.0)
+    assert cifer.method == "cifer" and type(cifer) is type(oe)
+    assert list(cifer.statistics.columns) == list(oe.statistics.columns)
+    for k, v in {"b0": 4.0, "a0": 2.0}.items():
+        # 5 % output noise on two 75 s sweeps: both paths within 2 % of the truth
+        assert cifer.structure.values[k] == pytest.approx(v, rel=0.02), k
+        assert oe.structure.values[k] == pytest.approx(v, rel=0.02), k
+    with pytest.raises(InputValueError, match="omega"):
+        identify(s, records, method="cifer", w_min=0.5, w_max=10.0, omega=[1.0, 2.0])
