@@ -117,6 +117,10 @@ def test_output_error_recovers_short_period_from_a_211():
         # 12 rad/s) separates the data from the model: 1 %
         assert res.structure.values[k] == pytest.approx(v, rel=0.01), k
     assert res.parameters.cramer_rao_pct.notna().all()
+    # a person would rather look: Bode of the empirical transfer function and the model
+    from matplotlib.figure import Figure
+    assert isinstance(res.plot(), Figure)
+    assert "J_ave" in res.summary() and list(res.to_pandas().parameter) == s.names
 
 
 def test_equation_error_recovers_short_period_and_same_result_kind():
@@ -143,7 +147,7 @@ def test_identify_cifer_path_concatenates_runs_and_returns_the_same_kind():
     s = TransferFunctionStructure(0, 1, delay=False, initial={"b0": 3.0, "a0": 1.5})
     records = []
     for seed in (1, 2):
-        t, u = frequency_sweep(0.3, 20.0, 60.0, DT, trim_start=10.0, noise_fraction=0.2, seed=seed)
+        t, u = frequency_sweep(0.5, 20.0, 60.0, DT, trim_start=10.0, noise_fraction=0.2, seed=seed)
         y = lsim(([4.0], [1.0, 2.0]), u, t)[1]
         y = y + 0.05 * np.std(y) * np.random.default_rng(seed).standard_normal(t.size)
         records.append(_record(t, u, y))
