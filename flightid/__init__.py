@@ -7,17 +7,22 @@ a flight-test record or a wind-tunnel record.
 
     frequency_sweep / doublet / multistep_3211          (test inputs)
     orthogonal_multisine                                (all inputs in one record)
+    read_flight_data ─► FlightRecord (DataFrame/CSV, units, resample, detrend)
               │ time histories t, u, y
               ▼
     frequency_response ─► MeasuredResponse (FRD + coherence)   chirp-z, composite windows
+    concatenated_response (several runs of one axis: pooled spectra)
     mimo_response / harmonic_response ─► MIMOResponse           simultaneous inputs (G_yu G_uu^-1)
               │ combine_responses, joint_input_output (y/u from y/θ and u/θ)
               ▼
     MLTauStructure / FGCStructure / GainDelayStructure  (free / fixed / tied parameters)
+    TransferFunctionStructure (fit_transfer_function, loes_fit); StateSpaceStructure (C, D too)
     MLTauFeedthroughStructure (+ direct D);  TransformedStructure (fit in other
               coordinates, e.g. sum/difference, with transform_response)
               │ fit  (CIFER cost, Cramér-Rao, insensitivity, stability, multi-start;
               │       DegeneracyReport: flat directions, square-block singular values)
+              │ identify(method="cifer" | "output_error" | "equation_error"): a FlightRecord
+              │   by composite-window responses or by Fourier transforms of the whole record
               │ fit_staged (plan of Stage s, §6.4.3)
               │ reduce (automatic Fig. 6.1 loop; refuses removals without a finite optimum)
               ▼
@@ -37,6 +42,10 @@ from .reduction import ReductionResult, reduce
 from .staging import Stage, StagedFitResult, fit_staged
 from .verification import VerificationResult, theil_inequality, verify
 from .feedthrough import MLTauFeedthroughStructure
+from .flight_data import concatenated_response, read_flight_data
+from .transfer_function import TransferFunctionStructure, fit_transfer_function, loes_fit
+from .state_space import StateSpaceStructure
+from .fourier import identify
 from .transformed import TransformedStructure, pair_costs, sum_difference_transform, transform_response
 
 __all__ = [
@@ -55,4 +64,6 @@ __all__ = [
     "VerificationResult", "theil_inequality", "verify",
     "MLTauFeedthroughStructure", "TransformedStructure", "pair_costs", "sum_difference_transform",
     "transform_response",
+    "concatenated_response", "read_flight_data",
+    "TransferFunctionStructure", "fit_transfer_function", "loes_fit", "StateSpaceStructure", "identify",
 ]

@@ -22,7 +22,7 @@ from threadpoolctl import threadpool_limits
 
 from .degeneracy import (DegeneracyReport, MultiStartReport, NoInformationError, block_singular_values,
                          hessian_report, multistart_report, square_components)
-from .errors import IdentificationError, UnstableModelError
+from .errors import IdentificationError, InputValueError, UnstableModelError
 from .response import MeasuredResponse
 from .structures import ModelStructure
 
@@ -132,6 +132,22 @@ class FitResult:
     degeneracy: DegeneracyReport | None = None
     multistart: MultiStartReport | None = None
     skipped_pairs: list = field(default_factory=list)
+    #: residual-scaled standard errors {parameter: value} where the method gives them
+    #: directly (Fourier-transform fits); None: computed on demand (:attr:`statistics`)
+    standard_errors: dict | None = None
+    #: "cifer" (fit to frequency responses) or a Fourier-transform method name
+    method: str = "cifer"
+
+    @property
+    def statistics(self) -> pd.DataFrame:
+        """Parameter table with the residual-scaled standard errors beside CIFER's bounds.
+
+        Columns: parameter, value, status, cramer_rao_pct, insensitivity_pct (as in
+        :attr:`parameters`), standard_error (absolute) and standard_error_pct.
+        See :func:`flightid.statistics.parameter_statistics` for the convention.
+        """
+        from .statistics import parameter_statistics
+        return parameter_statistics(self)
 
     @property
     def condition_number(self) -> float:
@@ -189,6 +205,9 @@ class FitResult:
     def plot(self, fig=None):
         """Bode overlay of data and model with coherence for every fitted response."""
         from .plotting import bode_with_coherence
+        if self.data is None:
+            raise IdentificationError("this fit holds no frequency response to plot (several inputs "
+                                      "fitted by a Fourier-transform method)")
         sources = self.data if isinstance(self.data, list) else [self.data]
         omega = np.unique(np.concatenate([src.omega for src in sources]))
         frd = self.structure.to_frd(omega, name="model")
@@ -448,6 +467,10 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     free = structure.free_names
     if not free:
         raise IdentificationError("the structure has no free parameters")
+    bad = [n for n in structure.names if not np.isfinite(structure.values[n])]
+    if bad:
+        raise InputValueError(f"initial value(s) of parameter(s) {bad} are NaN or infinite: give finite "
+                              "start values (structure initial / with_values)")
     sources = [responses] if isinstance(responses, MeasuredResponse) else list(responses)
     if not sources or not all(isinstance(src, MeasuredResponse) for src in sources):
         raise IdentificationError("responses must be a MeasuredResponse or a non-empty sequence of them "

@@ -17,7 +17,8 @@ __all__ = ["joint_input_output"]
 
 
 def joint_input_output(y_over_theta: MeasuredResponse, u_over_theta: MeasuredResponse, *,
-                       structural_zeros=None, max_condition=1e6, name=None) -> MeasuredResponse:
+                       structural_zeros=None, max_condition=1e6, name=None,
+                       coherence="weighted") -> MeasuredResponse:
     """Outputs over input-outputs, ``y/u = (y/theta) (u/theta)^+`` (Eq. 3.22).
 
     Parameters
@@ -35,6 +36,11 @@ def joint_input_output(y_over_theta: MeasuredResponse, u_over_theta: MeasuredRes
     max_condition : float
         Largest acceptable condition number of u/theta; above it the matrix is
         treated as singular.
+    coherence : {"weighted", "propagated"}
+        ``"weighted"`` (default): the magnitude-weighted coherence of Eqs.
+        3.23-3.25 (Notes). ``"propagated"``: the coherence equivalent to the
+        random error that the inversion carries into each element (Notes), which
+        grows with the conditioning of u/theta.
 
     Returns
     -------
@@ -106,8 +112,23 @@ def joint_input_output(y_over_theta: MeasuredResponse, u_over_theta: MeasuredRes
     terms = np.abs(Y[:, :, :, None] * Ui[:, None, :, :])  # (n_w, n_y, n_theta, n_u)
     # coherence of term (i, n, j): min(coh Y_in, coh U_jn)
     cmin = np.minimum(cy[:, :, :, None], np.swapaxes(cu, 1, 2)[:, None, :, :])
-    weights = terms / np.maximum(terms.sum(axis=2, keepdims=True), 1e-300)
-    coh = np.sum(weights * cmin, axis=2)
+    if coherence == "propagated":
+        coh = _propagated_coherence(Y, U, H, Ui, cy, cu)
+    else:
+        weights = terms / np.maximum(terms.sum(axis=2, keepdims=True), 1e-300)
+        coh = np.sum(weights * cmin, axis=2)
     return MeasuredResponse(np.moveaxis(H, 0, -1), w, np.moveaxis(coh, 0, -1),
                             list(u_over_theta.output_labels), list(y_over_theta.output_labels),
                             name=name)
+
+
+def _propagated_coherence(Y, U, H, Ui, cy, cu):
+    """Coherence equivalent to the propagated random error of H = Y Ui (see joint_input_output)."""
+    qy = (1 - cy) / np.maximum(cy, 1e-12)                          # (w, y, theta)
+    qu = (1 - cu) / np.maximum(cu, 1e-12)                          # (w, u, theta)
+    # sum_k |H_ik|^2 |U_kn|^2 q_U,kn -> (w, y, theta)
+    from_u = np.einsum("wik,wkn->win", np.abs(H) ** 2, np.abs(U) ** 2 * qu)
+    per_theta = np.abs(Y) ** 2 * qy + from_u                       # (w, y, theta)
+    var = np.einsum("win,wnj->wij", per_theta, np.abs(Ui) ** 2)    # (w, y, u)
+    ratio = var / np.maximum(np.abs(H) ** 2, 1e-300)
+    return 1.0 / (1.0 + ratio)

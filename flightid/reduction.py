@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 from tqdm.auto import tqdm
 
+from ._validation import real_scalar
 from .errors import IdentificationError, UnstableModelError
 from .fitting import FitResult, fit
 
@@ -74,7 +75,8 @@ def _runaway(before, after, runaway_factor, max_condition, refuse_flat):
 
 def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_rise_average=2.0,
            max_rise_single=10.0, protected=(), max_steps=100, progress=False, runaway_factor=100.0,
-           max_condition=1e10, refuse_flat=True, batch=1, **fit_kwargs) -> ReductionResult:
+           max_condition=1e10, refuse_flat=True, batch=1, relative_rise=None,
+           **fit_kwargs) -> ReductionResult:
     """Remove insensitive / poorly determined parameters while the fit stays good.
 
     Parameters
@@ -105,6 +107,15 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         the joint removal passes every check a single removal must (the cost
         rises count for the group as a whole), else its worst member is tried
         alone in the same step. 1 (default): one at a time, Fig. 6.1.
+    relative_rise : float, optional
+        Rise limits relative to the fit's own cost and counted from the *first*
+        fit instead of the absolute, step-by-step ``max_rise_average`` /
+        ``max_rise_single``: a removal is kept only if J_ave rises by at most
+        ``relative_rise * J_ave_first`` and no single J by more than
+        ``5 * relative_rise * J_ave_first`` above its first-fit value (the 2 : 10
+        ratio of the absolute guideline). At low noise (J_ave << 1) the absolute
+        limits accept removals the data reject; these follow the noise. None
+        (default) keeps the absolute limits.
 
     Returns
     -------
@@ -112,6 +123,8 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
     """
     if isinstance(batch, bool) or not isinstance(batch, (int, np.integer)) or batch < 1:
         raise IdentificationError(f"batch must be an integer >= 1, got {batch!r}")
+    if relative_rise is not None:
+        relative_rise = real_scalar("relative_rise", relative_rise, positive=True)
     current = fit(structure, data, **fit_kwargs)
     initial = current
     pairs = [(p.output, p.input) for p in current.pairs]
@@ -137,9 +150,13 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         except (UnstableModelError, IdentificationError) as err:
             return None, False, dict(J_ave_after=float("nan"), max_single_rise=float("nan"), accepted=False,
                                      runaway=False, note=str(err)[:120])
-        before = current.costs
+        before = current.costs if relative_rise is None else initial.costs
         rise = max(trial.costs[k] - before[k] for k in before)
-        cost_ok = (trial.J_ave - current.J_ave <= max_rise_average) and rise <= max_rise_single
+        if relative_rise is None:
+            cost_ok = (trial.J_ave - current.J_ave <= max_rise_average) and rise <= max_rise_single
+        else:
+            cost_ok = (trial.J_ave - initial.J_ave <= relative_rise * initial.J_ave
+                       and rise <= 5 * relative_rise * initial.J_ave)
         why = _runaway(current, trial, runaway_factor, max_condition, refuse_flat)
         ok = cost_ok and not why
         note = "" if ok else (f"runaway, no finite optimum: {why}; kept" if why else "cost rise too large; kept")

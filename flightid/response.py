@@ -245,6 +245,67 @@ def _frequency_plan(t, dt, *, w_min, w_max, n_points, points_per_decade, windows
     return omega, windows
 
 
+def _composite(records, dt, omega, windows, overlap, cycles_per_window):
+    """Composite-window response and coherence of one or several records of one input.
+
+    ``records`` is a list of ``(u, y)`` pairs (y of shape (n, n_outputs)) sampled
+    every ``dt`` [s]. For each window length the auto and cross spectra of all
+    records are pooled -- summed over every record's segments (CIFER's multi-run
+    concatenation), not averaged H's -- and the windows are then combined frequency
+    by frequency with weights 1/eps_r^2 (see :func:`frequency_response`).
+    Returns ``(h, coherence)`` of shape (n_outputs, n_freq).
+    """
+    n_out = records[0][1].shape[1]
+    n_points = omega.size
+    w_max = omega[-1]
+    sum_w = np.zeros((n_out, n_points))
+    acc_xx = np.zeros((n_out, n_points))
+    acc_yy = np.zeros((n_out, n_points))
+    acc_xy = np.zeros((n_out, n_points), dtype=complex)
+    for t_win in windows:
+        w_lo_win = cycles_per_window * 2 * np.pi / t_win
+        valid = omega >= w_lo_win * (1 - 1e-9)
+        if not valid.any():
+            continue
+        lo = omega[valid][0]
+        # oversample the window's natural resolution 2 pi / T four times so
+        # linear interpolation to the log grid adds negligible error
+        n_lin = int(np.ceil((w_max - lo) / (2 * np.pi / t_win / 4))) + 2
+        parts = [_window_spectra(u, y, dt, t_win, overlap, lo, w_max, n_lin) for u, y in records]
+        if len(parts) == 1:
+            wl, gxx, gyy, gxy, n_seg = parts[0]
+        else:
+            # pooled over all runs' segments: sum of the spectra, each run's mean
+            # spectrum weighted by its number of segments
+            wl = parts[0][0]
+            n_seg = sum(p[4] for p in parts)
+            gxx = sum(p[1] * p[4] for p in parts) / n_seg
+            gyy = sum(p[2] * p[4] for p in parts) / n_seg
+            gxy = sum(p[3] * p[4] for p in parts) / n_seg
+        gxx_i = np.interp(omega[valid], wl, gxx)
+        for k in range(n_out):
+            gyy_i = np.interp(omega[valid], wl, gyy[k])
+            gxy_i = np.interp(omega[valid], wl, gxy[k].real) + 1j * np.interp(omega[valid], wl, gxy[k].imag)
+            coh = np.abs(gxy_i) ** 2 / np.maximum(gxx_i * gyy_i, 1e-300)
+            coh = np.clip(coh, 1e-6, 0.9999)
+            # effective number of independent averages with overlapped Hann windows
+            n_eff = max(1.0, n_seg * (1.0 - overlap) * 2.0)
+            eps2 = (1 - coh) / (coh * 2 * n_eff)
+            wgt = 1.0 / eps2
+            sum_w[k, valid] += wgt
+            acc_xx[k, valid] += wgt * gxx_i
+            acc_yy[k, valid] += wgt * gyy_i
+            acc_xy[k, valid] += wgt * gxy_i
+    gxx = acc_xx / sum_w
+    gyy = acc_yy / sum_w
+    gxy = acc_xy / sum_w
+    if np.any(gxx <= 0):
+        raise DataError("the input has no power at some requested frequencies: widen the sweep band")
+    h = gxy / gxx
+    coh = np.abs(gxy) ** 2 / np.maximum(gxx * gyy, 1e-300)
+    return h, coh
+
+
 def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decade=25,
                        windows=None, n_windows=5, max_window=None, min_window=None, overlap=0.8,
                        cycles_per_window=2.0, input_name="u", output_names=None, name=None):
@@ -297,7 +358,6 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
                                      points_per_decade=points_per_decade, windows=windows,
                                      n_windows=n_windows, max_window=max_window, min_window=min_window,
                                      cycles_per_window=cycles_per_window)
-    w_max, n_points = omega[-1], omega.size
     if not isinstance(input_name, str) or not input_name:
         raise InputValueError(f"input_name must be a non-empty string, got {input_name!r}")
     n_out = y.shape[1]
@@ -312,41 +372,7 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
         raise DataError(f"output names must be unique and differ from the input name "
                         f"{input_name!r}, got {output_names}")
 
-    sum_w = np.zeros((n_out, n_points))
-    acc_xx = np.zeros((n_out, n_points))
-    acc_yy = np.zeros((n_out, n_points))
-    acc_xy = np.zeros((n_out, n_points), dtype=complex)
-    for t_win in windows:
-        w_lo_win = cycles_per_window * 2 * np.pi / t_win
-        valid = omega >= w_lo_win * (1 - 1e-9)
-        if not valid.any():
-            continue
-        lo = omega[valid][0]
-        # oversample the window's natural resolution 2 pi / T four times so
-        # linear interpolation to the log grid adds negligible error
-        n_lin = int(np.ceil((w_max - lo) / (2 * np.pi / t_win / 4))) + 2
-        wl, gxx, gyy, gxy, n_seg = _window_spectra(u, y, dt, t_win, overlap, lo, w_max, n_lin)
-        gxx_i = np.interp(omega[valid], wl, gxx)
-        for k in range(n_out):
-            gyy_i = np.interp(omega[valid], wl, gyy[k])
-            gxy_i = np.interp(omega[valid], wl, gxy[k].real) + 1j * np.interp(omega[valid], wl, gxy[k].imag)
-            coh = np.abs(gxy_i) ** 2 / np.maximum(gxx_i * gyy_i, 1e-300)
-            coh = np.clip(coh, 1e-6, 0.9999)
-            # effective number of independent averages with overlapped Hann windows
-            n_eff = max(1.0, n_seg * (1.0 - overlap) * 2.0)
-            eps2 = (1 - coh) / (coh * 2 * n_eff)
-            wgt = 1.0 / eps2
-            sum_w[k, valid] += wgt
-            acc_xx[k, valid] += wgt * gxx_i
-            acc_yy[k, valid] += wgt * gyy_i
-            acc_xy[k, valid] += wgt * gxy_i
-    gxx = acc_xx / sum_w
-    gyy = acc_yy / sum_w
-    gxy = acc_xy / sum_w
-    if np.any(gxx <= 0):
-        raise DataError("the input has no power at some requested frequencies: widen the sweep band")
-    h = gxy / gxx
-    coh = np.abs(gxy) ** 2 / np.maximum(gxx * gyy, 1e-300)
+    h, coh = _composite([(u, y)], dt, omega, windows, overlap, cycles_per_window)
     return MeasuredResponse(h[:, None, :], omega, coh[:, None, :], [input_name],
                             list(output_names), name=name)
 

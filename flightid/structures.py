@@ -309,6 +309,27 @@ class MLTauStructure(ModelStructure):
         return a, b, self.C, np.zeros((len(self.outputs), len(self.inputs)))
 
 
+def _fgc_response(f, g, c, d, sm):
+    """C (sm I - F)^-1 G (+ D) at the model-time Laplace variables ``sm``: (n_out, n_in, n_w)."""
+    n = f.shape[0]
+    # modal form C V diag(1/(s - lambda)) V^-1 G: one eigendecomposition instead
+    # of a linear solve per frequency (the fit evaluates this thousands of
+    # times). Its rounding error grows with cond(V); near-defective F (cond(V)
+    # > 1e6, error > ~1e-10) falls back to the direct solve.
+    lam, v = np.linalg.eig(f)
+    if np.isfinite(lam).all() and np.linalg.cond(v) < 1e6:
+        cv = c @ v
+        vg = np.linalg.solve(v, g)
+        residues = (cv.T[:, :, None] * vg[:, None, :]).reshape(n, -1)      # (n, o * j)
+        res = (1.0 / (sm[:, None] - lam[None, :])) @ residues                # (w, o * j)
+        out = np.moveaxis(res.reshape(sm.size, cv.shape[0], g.shape[1]), 0, -1)
+    else:
+        res = np.linalg.solve(sm[:, None, None] * np.eye(n)[None] - f[None],
+                              np.broadcast_to(g, (sm.size,) + g.shape))
+        out = np.moveaxis(c @ res, 0, -1)
+    return out + d[:, :, None] if d is not None else out
+
+
 class FGCStructure(ModelStructure):
     """``x' = F x + G u(t - tau)``, ``y = C x`` (Eqs. 2.33-2.36, 6.2-6.7).
 
@@ -344,23 +365,7 @@ class FGCStructure(ModelStructure):
     def _undelayed(self, mats, s):
         f, g = mats["F"], mats["G"]
         sm = self._s_model(s)
-        n = f.shape[0]
-        # modal form C V diag(1/(s - lambda)) V^-1 G: one eigendecomposition instead
-        # of a linear solve per frequency (the fit evaluates this thousands of
-        # times). Its rounding error grows with cond(V); near-defective F (cond(V)
-        # > 1e6, error > ~1e-10) falls back to the direct solve.
-        lam, v = np.linalg.eig(f)
-        if np.isfinite(lam).all() and np.linalg.cond(v) < 1e6:
-            cv = self.C @ v
-            vg = np.linalg.solve(v, g)
-            residues = (cv.T[:, :, None] * vg[:, None, :]).reshape(n, -1)      # (n, o * j)
-            res = (1.0 / (sm[:, None] - lam[None, :])) @ residues                # (w, o * j)
-            out = np.moveaxis(res.reshape(s.size, cv.shape[0], g.shape[1]), 0, -1)
-        else:
-            res = np.linalg.solve(sm[:, None, None] * np.eye(n)[None] - f[None],
-                                  np.broadcast_to(g, (s.size,) + g.shape))
-            out = np.moveaxis(self.C @ res, 0, -1)
-        return out + mats["D"][:, :, None] if "D" in mats else out
+        return _fgc_response(f, g, self.C, mats.get("D"), sm)
 
     def _abcd(self, mats):
         scale = 1.0 if self.omega is None else self.omega

@@ -5,6 +5,8 @@ sampled every ``dt`` seconds, starting and ending at trim (zero perturbation).
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from ._validation import integer, real_scalar
@@ -56,7 +58,15 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
         Seed of the noise generator (explicit for reproducibility).
     fade_cycles : float
         The first and last ``fade_cycles`` periods are faded in/out with a
-        half-cosine so the input starts and ends at trim without a step.
+        half-cosine so the input starts and ends at trim without a step. Fades
+        longer than the sweep together raise :class:`InputValueError`.
+
+    Warns
+    -----
+    UserWarning
+        When the whole record (trims included) is shorter than
+        :func:`frequency_response` needs to resolve ``w_min`` with its default
+        windows (``8 pi / w_min``: two windows of two periods).
 
     Returns
     -------
@@ -79,6 +89,20 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
     if dt > 2 * np.pi / w_max / 8:
         raise InputValueError(f"dt = {dt:.3g} s gives fewer than 8 samples per period at w_max = "
                          f"{w_max:.3g} rad/s (needs dt <= {2 * np.pi / w_max / 8:.3g} s)")
+    fade_in = fade_cycles * 2 * np.pi / w_min
+    fade_out = fade_cycles * 2 * np.pi / w_max
+    if fade_in + fade_out > duration:
+        raise InputValueError(f"fade_cycles = {fade_cycles:g} fades over {fade_in + fade_out:.4g} s, longer "
+                              f"than the sweep (duration = {duration:.4g} s): the fades would overlap and "
+                              f"the envelope jump; use fade_cycles <= "
+                              f"{duration / (2 * np.pi / w_min + 2 * np.pi / w_max):.4g}")
+    record = trim_start + duration + trim_end
+    needed = 2 * 2.0 * 2 * np.pi / w_min
+    if record < needed:
+        warnings.warn(f"the record ({record:.4g} s with trims) is shorter than frequency_response needs to "
+                      f"resolve w_min = {w_min:.4g} rad/s with its default windows (>= {needed:.4g} s: "
+                      "two windows of two periods); lengthen duration or trim_start [s]", UserWarning,
+                      stacklevel=2)
     n_total = int(round((trim_start + duration + trim_end) / dt)) + 1
     if n_total > _MAX_SAMPLES:
         raise InputValueError(f"the record would hold {n_total:.3g} samples (> {_MAX_SAMPLES:.0e}): "
@@ -92,8 +116,6 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
         duration / _C1 * (np.exp(_C1 * ts / duration) - 1.0) - ts)
     u = np.where(inside, amplitude * np.sin(phase), 0.0)
     # half-cosine fades so the sweep leaves and returns to trim smoothly
-    fade_in = fade_cycles * 2 * np.pi / w_min
-    fade_out = fade_cycles * 2 * np.pi / w_max
     env = np.ones_like(t)
     m = inside & (tau < fade_in)
     env[m] = 0.5 * (1 - np.cos(np.pi * tau[m] / fade_in))
