@@ -103,11 +103,26 @@ def _strip_docstrings(tree):
     return tree
 
 
+def _strip_package_face(tree):
+    """A package ``__init__`` without its re-exports: top-level imports and ``__all__``."""
+    def is_face(node):
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            return True
+        targets = (node.targets if isinstance(node, ast.Assign) else
+                   [node.target] if isinstance(node, (ast.AugAssign, ast.AnnAssign)) else [])
+        return any(isinstance(t, ast.Name) and t.id == "__all__" for t in targets)
+    tree.body = [n for n in tree.body if not is_face(n)] or [ast.Pass()]
+    return tree
+
+
 def code_digest(path):
     """SHA-256 of what a Python module runs: its syntax tree without docstrings.
 
     Comments, blank lines, line breaks inside brackets and docstrings do not change
-    it; any change to a statement, name, constant or default does. A module that
+    it; any change to a statement, name, constant or default does. In a package's
+    ``__init__.py`` the package face is left out too: its top-level import
+    statements and ``__all__`` (re-exports cannot change a number; a module they
+    import is recorded and checked on its own when a study can run it). A module that
     reads ``__doc__`` keeps its docstrings in the digest (it may print them). The
     digest is prefixed with the interpreter's ``major.minor`` version, because the
     syntax tree's form is specific to it: on another Python the digests never
@@ -132,6 +147,8 @@ def code_digest(path):
     tree = ast.parse(source, filename=str(path))
     if "__doc__" not in source:
         tree = _strip_docstrings(tree)
+    if Path(path).name == "__init__.py":
+        tree = _strip_package_face(tree)
     text = f"python{sys.version_info.major}.{sys.version_info.minor}\n" + ast.dump(tree, include_attributes=False)
     return hashlib.sha256(text.encode()).hexdigest()
 

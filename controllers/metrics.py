@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import control
 
-__all__ = ["frequency_response_of", "crossover_frequency", "gain_phase_margins",
+__all__ = ["duda_olop_limit", "frequency_response_of", "crossover_frequency", "gain_phase_margins",
            "nichols_margin", "disturbance_rejection_bandwidth", "disturbance_rejection_peak",
            "attitude_bandwidth", "damping_in_band", "rms_response", "open_loop_onset_point",
            "DEFAULT_OMEGA", "NonFiniteResponseError", "BandwidthUndefinedError"]
@@ -253,3 +253,30 @@ def open_loop_onset_point(loop, pilot_to_actuator, stick_amplitude, rate_limit, 
                                                        np.log(w[k - 1:k + 1]))))
     _, mag, phase = _mag_phase(loop, w)
     return (float(np.interp(np.log(w_on), np.log(w), phase)), float(np.interp(np.log(w_on), np.log(w), mag)), w_on)
+
+
+def duda_olop_limit(phase_deg):
+    """Approximate OLOP Level 1 gain limit [dB] at a loop phase [deg].
+
+    The line used by the OLOP specs (``OlpOpG1``): -2 dB
+    at -180 deg (and below, down to -360 deg) rising linearly to +10 dB at
+    -120 deg, unbounded from -120 deg to 0 deg (an approximation of Duda's
+    (1997) boundary; the printed chart was not found).  The phase is taken
+    modulo 360 deg.
+
+    Parameters
+    ----------
+    phase_deg : float
+        Broken-loop phase at the onset frequency [deg].
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> duda_olop_limit(-180.0), duda_olop_limit(-150.0)
+    (-2.0, 4.0)
+    """
+    ph = (phase_deg + 360.0) % 360.0 - 180.0    # distance above -180 deg, in [-180, 180)
+    return -2.0 + 12.0 * max(0.0, ph) / 60.0 if ph < 60.0 else float("inf")

@@ -132,9 +132,7 @@ def _olop_margin(design, stick_amplitude=1.0, rate_limit=1.0):
                                                 stick_amplitude, rate_limit)
     if not np.isfinite(w_on):
         return 20.0   # the rate limit is never reached: far inside Level 1
-    ph = (phase + 180.0) % 360.0 - 180.0          # distance from -180 deg in (-180, 180]
-    limit = -2.0 + 12.0 * max(0.0, ph) / 60.0 if ph < 60.0 else np.inf
-    return float(limit - gain)
+    return float(m.duda_olop_limit(phase) - gain)
 
 
 def _max_real_pole(design):

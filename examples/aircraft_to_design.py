@@ -38,8 +38,7 @@ result = controllers.dmo(design, progress=False)   # raises InfeasibleDesignErro
 print(result.message)
 
 # 4. the design's specs (Table 7.3), re-checked with python-control, and its HQ window
-last = result.history[result.history.feasible].iloc[-1]
-specs = controllers.default_specs(last.crossover_min, last.drb_min)
+specs = controllers.default_specs(result.crossover_boundary, result.drb_boundary)
 table = controllers.evaluate_specs(result.design, specs)
 print(table[["spec", "value", "level", "met"]].to_string(index=False))
 controllers.hq_window([result.design], specs, labels=["DC design"]).savefig("tour_hq_window.png", dpi=70)

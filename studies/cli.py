@@ -143,6 +143,10 @@ STUDIES = {s.command: s for s in (
     Study("wake-length-check", "studies.wake_length_check",
           "coaxial hover cyclic/collective responses on 3x the far wake and 2x the free wake (issue 9, item 1)",
           6.0, default_out="results/wake_length_check", cached_note="wake runs cached under .cache/wake"),
+    Study("roll-design-sensitivity", "studies.roll_design_sensitivity",
+          "which cyclic each stick drives (control phase), 100/200 kt lift-offset trims, case A against the "
+          "rotor assumptions (flap frequency, Lock number, control phase)", 6.0,
+          default_out="results/roll_design_sensitivity"),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),

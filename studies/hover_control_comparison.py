@@ -351,7 +351,10 @@ def main(argv=None):
     failures = []
     res_a = _design(plant_dc, start, command, actuator, "case (A)", failures)
     if res_a is None:
-        raise SystemExit("case (A) has no feasible design: nothing to compare against")
+        # a result, not a crash: the plants' modes, derivatives and slow zeros are written above
+        (out / "infeasible.txt").write_text("\n".join(failures) + "\n")
+        print("case (A) has no feasible design: nothing to compare against (infeasible.txt)")
+        return out
     results = {"A": res_a}
     for key in inflows:
         print(f"[stage 3] DMO on the {labels[key]} aircraft")
@@ -423,8 +426,7 @@ def main(argv=None):
         column[name] = None
 
     def final_specs(res):
-        last = res.history[res.history.feasible].iloc[-1]
-        return default_specs(last.crossover_min, last.drb_min)
+        return default_specs(res.crossover_boundary, res.drb_boundary)
 
     specs_by_key = {"A": final_specs(res_a), **{k: final_specs(r) for k, r in results.items()
                                                  if k != "A" and r is not None}}

@@ -193,3 +193,24 @@ def test_record_kernel_backend_is_explicit_and_only_where_it_makes_a_folder_fres
     manifest = json.loads((folder / "manifest.json").read_text())
     assert manifest["machine"]["kernel_backend"] == "cpu"
     assert record_kernel_backend(root / "results", "cpu", root=root) == []   # already says
+
+
+def test_package_face_changes_leave_the_digest_alone(tmp_path):
+    """Re-exports of a package ``__init__`` cannot change a number: a new import or a
+    longer ``__all__`` keeps its digest; a statement that runs code does not."""
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    init = pkg / "__init__.py"
+    init.write_text('"""face"""\nfrom .a import f\n__all__ = ["f"]\nSCALE = 2.0\n')
+    before = code_digest(init)
+    init.write_text('"""face"""\nfrom .a import f\nfrom .b import g, h\n__all__ = ["f", "g"]\n'
+                    '__all__ += ["h"]\nSCALE = 2.0\n')
+    assert code_digest(init) == before
+    init.write_text('"""face"""\nfrom .a import f\n__all__ = ["f"]\nSCALE = 3.0\n')
+    assert code_digest(init) != before
+    # an ordinary module keeps its imports in the digest
+    mod = pkg / "m.py"
+    mod.write_text("from math import pi\n")
+    first = code_digest(mod)
+    mod.write_text("from math import pi, tau\n")
+    assert code_digest(mod) != first

@@ -27,6 +27,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from .. import metrics as m
+from ..metrics import duda_olop_limit
 from ..specs import Spec, default_specs
 from .base import HQSpec
 
@@ -99,33 +100,6 @@ class _PositionLimited:
         _, h = m.frequency_response_of(self.sys, omega)
         cap = np.minimum(1.0, self.position_limit / np.maximum(self.amplitude * np.abs(h), 1e-300))
         return h * cap
-
-
-def duda_olop_limit(phase_deg):
-    """Approximate OLOP Level 1 gain limit [dB] at a loop phase [deg].
-
-    The line described in :mod:`controllers.specs` (``_olop_margin``): -2 dB
-    at -180 deg (and below, down to -360 deg) rising linearly to +10 dB at
-    -120 deg, unbounded from -120 deg to 0 deg (an approximation of Duda's
-    (1997) boundary; the printed chart was not found).  The phase is taken
-    modulo 360 deg.
-
-    Parameters
-    ----------
-    phase_deg : float
-        Broken-loop phase at the onset frequency [deg].
-
-    Returns
-    -------
-    float
-
-    Examples
-    --------
-    >>> duda_olop_limit(-180.0), duda_olop_limit(-150.0)
-    (-2.0, 4.0)
-    """
-    ph = (phase_deg + 360.0) % 360.0 - 180.0    # distance above -180 deg, in [-180, 180)
-    return -2.0 + 12.0 * max(0.0, ph) / 60.0 if ph < 60.0 else float("inf")
 
 
 def olop_margin(loop, input_to_actuator, amplitude, limits):
