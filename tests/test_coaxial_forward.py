@@ -176,7 +176,9 @@ def test_trim_request_and_condition():
 def test_aircraft_lift_offset_follows_the_differential_cyclic():
     # the aircraft's per-rotor LOS = -C_L/C_T from its own trim, recomputed here from the
     # trim loads; more differential lateral cyclic moves both rotors' lift to their
-    # advancing sides (measured 0.0 rad: -0.042/-0.069, 0.06 rad: 0.096/0.078)
+    # advancing sides. Paired as Eq. 7.19 (theta1s, control phase 90 deg) the trim already
+    # carries lift offset without it (measured 0.0 rad: 0.319/0.298, 0.06 rad: 0.376/0.357;
+    # with the former own-frame theta1c pairing -0.042/-0.069 and 0.096/0.078)
     from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
     from aircraft.identification.coaxial_200kt import SPEED_200KT, aircraft_lift_offset
     from aircraft.inflow import IsolatedRotors
@@ -184,7 +186,8 @@ def test_aircraft_lift_offset_follows_the_differential_cyclic():
     cfg = coaxial_compound(cruise=True)
     low, high = aircraft_lift_offset(cfg, lateral_cyclic_difference=0.0), \
         aircraft_lift_offset(cfg, lateral_cyclic_difference=0.06)
-    assert all(h > lo + 0.1 for h, lo in zip(high, low))
+    assert all(lo > 0.25 for lo in low)
+    assert all(h > lo + 0.04 for h, lo in zip(high, low))
     tr = trim(Helicopter(cfg, IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
               TrimCondition(speed=SPEED_200KT, lateral_cyclic_difference=0.06))
     for r, los in zip("UL", high):
@@ -208,9 +211,10 @@ def test_isolated_rotor_check_bad_input_and_single_rotor():
 
 def test_isolated_rotor_check_against_itself_and_the_printed_model():
     # Isolated Rotors entered as a model must coincide with the reference (0 dB, 0 deg):
-    # the plumbing compares like with like. The printed Eqs. 6.12-6.13 in our aircraft
-    # differ from Isolated Rotors by more than 1 dB in 1-20 rad/s (the dissertation
-    # reports 2-3 dB for its aircraft, §7.4.2.1; measured here 2.6-6.4 dB).
+    # the plumbing compares like with like. The printed Eqs. 6.12-6.13 were identified at
+    # the lift offsets of the dissertation's trim; with the lift-offset input paired as
+    # Eq. 7.19 says, our aircraft trims to lift offsets ~0.35 at 200 kt, where the printed
+    # model finds no trim within the budget: the check reports that as a verdict, not a crash
     from aircraft.identification.coaxial_200kt import isolated_rotor_check
     from aircraft.inflow import IdentifiedInflow, IsolatedRotors
     from aircraft.inflow.published import in_rotor_frames
@@ -220,11 +224,10 @@ def test_isolated_rotor_check_against_itself_and_the_printed_model():
                                     in_rotor_frames(COAXIAL_200KT_12STATE))}, omega=w)
     d = chk.differences.set_index(["model", "response"])
     assert (d.loc["copy"].max_abs_magnitude_diff_db < 1e-9).all()
-    assert chk.holds("copy") and not chk.holds("Eqs. 6.12-6.13")
-    assert d.loc["Eqs. 6.12-6.13"].max_abs_magnitude_diff_db.max() > 1.0
+    assert chk.holds("copy")
     v = chk.verdicts().set_index("model")
     assert v.loc["copy", "isolated_rotors_hold"] and v.loc["copy", "trim"] == "converged"
-    assert set(chk.poles.model) == {"Isolated Rotors", "copy", "Eqs. 6.12-6.13"}
+    assert v.loc["Eqs. 6.12-6.13", "trim"].startswith("failed")
     with pytest.raises(KeyError, match="no model"):
         chk.holds("nothing")
     fig = chk.plot()

@@ -118,8 +118,8 @@ def test_single_rotor_hover_trim_and_bad_inputs():
         Helicopter(coaxial_compound(), PittPeters())
     with pytest.raises(ValueError, match="speed must be"):
         TrimCondition(speed=-1.0)
-    with pytest.raises(ValueError, match="pilot inputs"):
-        linearize(tr, inputs="pilot")
+    # the single rotor flies pilot inputs too (its own control phase, no propeller)
+    assert list(linearize(tr, inputs="pilot").input_labels) == ["delta_col", "delta_lon", "delta_lat", "delta_ped"]
 
 
 def test_forward_flight_trim_at_200_kt_with_lift_offset():
