@@ -8,14 +8,20 @@
                  └──► Helicopter(config, inflow) ─ trim ─ linearize ─► control.StateSpace
 
 ``aircraft.identify_inflow`` (:mod:`aircraft.identification`) runs the whole
-identification of an inflow model from the wake. The wake is a subpackage (``aircraft.wake``) imported on demand: it compiles
-numba kernels on first use.
+identification of an inflow model from the wake. The wake is a subpackage
+(``aircraft.wake``) imported on demand: it compiles numba kernels on first use.
+
+An aircraft is also data: ``write_aircraft`` / ``read_aircraft``
+(:mod:`aircraft.config_files`) store an ``AircraftConfig`` as a TOML file, and
+``load_shipped_aircraft`` reads the two shipped ones (``aircraft/data/aircraft``).
 """
 from .configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, ASSUMPTIONS,
                       coaxial_compound, uh60_single_rotor)
+from .config_files import ConfigFileError, load_shipped_aircraft, read_aircraft, write_aircraft
 
 __all__ = ["AircraftConfig", "ConfigError", "PropellerConfig", "RotorConfig", "ASSUMPTIONS",
-           "coaxial_compound", "uh60_single_rotor", "identify_inflow", "IdentificationSettings",
+           "coaxial_compound", "uh60_single_rotor", "read_aircraft", "write_aircraft",
+           "load_shipped_aircraft", "ConfigFileError", "identify_inflow", "IdentificationSettings",
            "IdentifiedModel"]
 
 _IDENTIFICATION = ("identify_inflow", "IdentificationSettings", "IdentifiedModel")
