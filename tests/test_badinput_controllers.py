@@ -114,3 +114,43 @@ def test_spec_and_command_model_fields_are_checked():
         Spec("X", "x", lambda d: 0.0, "up", 1.0, 0.5)
     with pytest.raises(ValueError, match="boundaries must be finite"):
         Spec("X", "x", lambda d: 0.0, "min", np.nan, 0.5)
+
+
+def test_zero_sensor_delay_builds_every_loop():
+    # a zero delay is a unit gain: the Padé blocks must be float systems (control.ss
+    # refuses the integer 1 that the zero-delay branch used to return)
+    from controllers import EMFDesign, PIDGains, hover_roll_plant
+    d = EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.05), sensor_delay=0)
+    assert d.broken_loop_statespace().nstates > 0
+    assert d.closed_loop().nstates > 0
+
+
+def test_negative_equivalent_delay_is_reported_not_clipped_silently():
+    import warnings as _w
+    from controllers import FrequencyFunction, fit_equivalent_delay
+    from controllers.emf import NegativeDelayWarning
+    lead = FrequencyFunction(lambda s: np.exp(0.02 * s))      # a 20 ms phase lead
+    with pytest.warns(NegativeDelayWarning, match="-20"):
+        assert fit_equivalent_delay(lead) == 0.0
+    with _w.catch_warnings():
+        _w.simplefilter("error")
+        assert fit_equivalent_delay(FrequencyFunction(lambda s: np.exp(-0.03 * s))) == pytest.approx(0.03)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(scale_span=(5.0, 0.2)), "scale_span"), (dict(integral_ratios=(0.0, 1.0)), "integral_ratios"),
+    (dict(rate_ratios=(np.nan, 1.0)), "rate_ratios"), (dict(reference_frequency=0.0), "reference_frequency")])
+def test_search_refuses_bad_spans(kwargs, match):
+    from controllers import EMFDesign, PIDGains, hover_roll_plant, search_designs
+    with pytest.raises(ValueError, match=match):
+        search_designs(EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.05)), **kwargs)
+
+
+@pytest.mark.parametrize("band", [(0.0, 12.0), (12.0, 1.0), (np.inf, 1.0), "1-12"])
+def test_fit_ranges_that_cannot_be_log_spaced_are_refused(band):
+    from controllers import FrequencyFunction, fit_equivalent_delay, fit_inverse_plant
+    h = FrequencyFunction(lambda s: 2.0 / (s + 1.0))
+    with pytest.raises(ValueError, match="omega_range"):
+        fit_inverse_plant(h, band)
+    with pytest.raises(ValueError, match="omega_range"):
+        fit_equivalent_delay(h, band)
