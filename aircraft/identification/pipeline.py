@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import datetime
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields, is_dataclass
 
 import numpy as np
 import pandas as pd
@@ -148,7 +148,8 @@ def identification_hash(config, condition, structure, settings=None, *, ct=None,
     Parameters
     ----------
     config : aircraft.AircraftConfig
-        Rotor(s) identified (hashed by its ``repr``).
+        Rotor(s) identified (hashed by its ``repr`` without the fields the wake never sees:
+        the pilot mixing's ``control_phase``).
     condition : aircraft.wake.FlightCondition
         Flight condition (a dataclass, hashed field by field).
     structure : InflowStructure or str
@@ -179,9 +180,22 @@ def identification_hash(config, condition, structure, settings=None, *, ct=None,
     payload = {"schema": SCHEMA, "pipeline": PIPELINE_VERSION,
                # the wake's own marker of result-changing code changes
                "wake_code": getattr(_sweeps, "_CACHE_VERSION", "unknown"),
-               "config": repr(config), "condition": asdict(condition), "structure": structure.spec(),
+               "config": _wake_repr(config), "condition": asdict(condition), "structure": structure.spec(),
                "trim": _trim_request(config, ct, trim), "settings": settings.to_dict()}
     return settings_hash(payload), payload
+
+
+#: aircraft fields the wake never sees (the pilot mixing): left out of the identification hash
+_NOT_WAKE_INPUTS = ("control_phase",)
+
+
+def _wake_repr(config):
+    """The configuration's dataclass ``repr`` without the fields the wake does not use."""
+    if not is_dataclass(config):
+        return repr(config)
+    items = ", ".join(f"{f.name}={getattr(config, f.name)!r}" for f in fields(config)
+                      if f.repr and f.name not in _NOT_WAKE_INPUTS)
+    return f"{type(config).__qualname__}({items})"
 
 
 def _code_version():
