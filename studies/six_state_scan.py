@@ -16,7 +16,7 @@ Writes ``results/six_state_scan/``: ``table.csv`` (one row per candidate),
 
 Run: ``rotorwake six-state-scan`` (``--n-jobs``: worker processes for the wake and
 the scan). It has no small configuration; the tests check the library pieces on
-exact data (``tests/test_six_state_scan.py``).
+exact data (``tests/aircraft/identification/test_six_state_scan.py``).
 """
 from __future__ import annotations
 

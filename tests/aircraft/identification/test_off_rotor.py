@@ -235,7 +235,7 @@ def test_study_small_end_to_end(tmp_path):
 
     The tiny wake (20 deg steps, 1.5 revolutions, 4 elements, 8 s sweeps) checks the
     plumbing, not the numbers; the physics checked here is robust even there."""
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=root, ROTORWAKE_CACHE_DIR=str(tmp_path / "cache"))
     out = tmp_path / "out"
     done = subprocess.run([sys.executable, "-m", "studies.off_rotor_models", "--small", "--jobs", "1",

@@ -3,7 +3,7 @@
 One coaxial identification (h/R 0.14) on the 20 deg, 1.5-revolution wake with 12 s
 sweeps: about a minute of CPU with an empty wake cache, hence ``slow`` (the
 interpolated schedule between points is tested on stand-in models in
-tests/test_design_space.py); the wake runs go to
+tests/aircraft/identification/test_design_space.py); the wake runs go to
 $ROTORWAKE_CACHE_DIR (or .cache/wake) like any run, so a second run takes seconds.
 """
 import json
@@ -15,7 +15,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.slow

@@ -2,7 +2,7 @@
 
 The data are computed here with numpy, independently of the structures:
 ``lambda/C = ((M s/Omega + Lbar)^-1 + D) exp(-s tau)`` elementwise, from a
-physically sized hover 6-state in our frames (``tests/test_coaxial_6state_start.py``'s
+physically sized hover 6-state in our frames (``tests/aircraft/identification/test_coaxial_6state_start.py``'s
 values) with a cross-rotor feedthrough added (sized as our wake's fit asks). On
 exact data the true structure, given the truth among its starts, fits to
 J_ave ~1e-4 and returns every parameter within 1 %; Eq. 5.3 without the

@@ -124,7 +124,7 @@ def test_six_state_diagnostics_pinned_mass_row_recovers_eq_5_3_on_its_own_data()
     from pathlib import Path
     from aircraft.identification import Coaxial6State
     from aircraft.identification.six_state_diagnostics import six_state_diagnostics
-    rec = json.loads((Path(__file__).resolve().parents[1] / "aircraft/data/models/published_eq5_3.json")
+    rec = json.loads((Path(__file__).resolve().parents[2] / "aircraft/data/models/published_eq5_3.json")
                      .read_text())
     mats = {k: np.array(v) for k, v in rec["matrices"].items()}
     idx = {"11": (0, 0), "14": (0, 3), "22": (1, 1), "25": (1, 4), "41": (3, 0), "44": (3, 3),

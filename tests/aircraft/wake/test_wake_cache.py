@@ -31,7 +31,7 @@ SPECS = [SweepSpec("theta0", kind="sine", amplitude=0.01 * (k + 1), duration=1.0
 #: the longer set the kill test interrupts
 KILL_SPECS = SPECS + [SweepSpec("theta0", kind="sine", amplitude=0.05 + 0.01 * k, duration=1.0,
                                 w_min=2.0, label=f"extra{k}") for k in range(6)]
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[3]
 
 
 def _fake_trim_result(converged=True):
@@ -251,8 +251,8 @@ def test_cache_location_from_argument_environment_and_default(tmp_path, runner, 
 _KILL_SCRIPT = textwrap.dedent("""
     import sys, time
     import numpy as np, pandas as pd
-    sys.path[:0] = [sys.argv[2], sys.argv[2] + "/tests"]
-    from test_wake_cache import KILL_SPECS, Runner, CFG, SETTINGS, FLIGHT
+    sys.path[:0] = [sys.argv[2]]
+    from tests.aircraft.wake.test_wake_cache import KILL_SPECS, Runner, CFG, SETTINGS, FLIGHT
     import aircraft.wake.sweeps as sw
     r = Runner()
     def slow_run(*args):

@@ -24,7 +24,7 @@ from aircraft.inflow import KR_ANALYTICAL, PittPeters, RotorOperatingPoint
 from aircraft.inflow.published import UH60_MU01_MFW, UH60_MU02_MFW
 
 OMEGA, CT = 27.0, 0.0061
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[3]
 
 
 # -- structure ---------------------------------------------------------------------------

@@ -1,7 +1,7 @@
 """A study runs as a user runs it: as a program, never imported by the tests.
 
-The identification chain itself is tested on the library (tests/test_flightid_*.py,
-tests/test_identification_pipeline.py: aircraft.identify_inflow on a tiny wake);
+The identification chain itself is tested on the library (tests/flightid/,
+tests/aircraft/identification/test_identification_pipeline.py: aircraft.identify_inflow on a tiny wake);
 this checks that the demo study, a thin layer over it, runs and writes its tables.
 """
 import os
@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pandas as pd
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_identification_demo_writes_tables_and_figures(tmp_path):

@@ -28,9 +28,9 @@ from aircraft.wake import FreeVortexWake, WakeSettings, gpu
 from aircraft.wake import biot_savart
 from aircraft.wake.biot_savart import CROSS_MACHINE_RTOL, segment_velocity
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[3]
 needs_device = pytest.mark.skipif(not gpu.available(), reason=f"no CUDA device: {gpu.unavailable_reason()}")
-# a tiny single-rotor wake (as tests/test_reproducible.py): 20 deg steps, 1.5 revolutions, 4 elements
+# a tiny single-rotor wake (as tests/aircraft/wake/test_reproducible.py): 20 deg steps, 1.5 revolutions, 4 elements
 TINY_WAKE = dict(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=4)
 
 
@@ -102,7 +102,7 @@ def _march(theta0, revs):
 def test_wake_run_on_gpu_matches_cpu_within_cross_machine_tolerance(cpu_backend):
     # the GPU's round-off differs from the CPU's (fused multiply-adds), like
     # another machine's: the run must hold the stated cross-machine tolerance on
-    # the averages over the last 4 of 6 revolutions (tests/test_reproducible.py)
+    # the averages over the last 4 of 6 revolutions (tests/aircraft/wake/test_reproducible.py)
     revs = 6
     ref = _march(0.15, revs)
     assert biot_savart.set_kernel_backend("gpu") == "gpu"

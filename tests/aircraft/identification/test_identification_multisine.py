@@ -5,7 +5,7 @@ model (simulated with scipy, :func:`aircraft.identification.synthetic.simulate_m
 through a fully populated control-to-load mixing with each spec's own input
 signals, so the library pipeline (one multisine record -> MIMO response -> joint
 input-output -> fit -> verification) is checked against numbers it did not make.
-The real wake is exercised by tests/test_wake_multisine.py and benchmarks/multisine.py.
+The real wake is exercised by tests/aircraft/wake/test_wake_multisine.py and benchmarks/multisine.py.
 """
 import math
 from types import SimpleNamespace

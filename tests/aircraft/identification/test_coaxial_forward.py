@@ -242,7 +242,7 @@ def test_study_small_end_to_end(tmp_path):
     import sys
     from pathlib import Path
     import pandas as pd
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[3]
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(root),
                ROTORWAKE_CACHE_DIR=str(tmp_path / "cache"))
     done = subprocess.run([sys.executable, "-m", "studies.coaxial_forward_flight", "--small", "--jobs", "1",

@@ -2,7 +2,7 @@
 
 The data are computed here with numpy, ``(M s/Omega + Lbar)^-1 exp(-s tau)``,
 elementwise delays, from a physically sized hover model in our frames (the values
-of ``tests/test_coaxial_12state_structure.py``). From the truth itself the fit stays
+of ``tests/aircraft/identification/test_coaxial_12state_structure.py``). From the truth itself the fit stays
 at J_ave ~1e-4, so the data and the cost agree. From
 :meth:`Coaxial6State.initial_values` (Lbar within 5 % of the truth, M from Pitt-Peters,
 cross M zero) it stops at J_ave ~690 with the collective cross masses of the wrong

@@ -12,7 +12,7 @@ import pytest
 from aircraft.configs import coaxial_compound
 from aircraft.identification.wake_sensitivity import wake_setting_sensitivity
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[3]
 
 
 @pytest.mark.parametrize("variants, match", [({}, "at least one"), ({"base": {"wake_revolutions": 2.0}}, "'base'"),

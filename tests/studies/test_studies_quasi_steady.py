@@ -10,7 +10,7 @@ import pandas as pd
 
 from aircraft.inflow import IdentifiedInflow
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_quasi_steady_study_compares_each_model_with_the_same_steps(tmp_path):

@@ -2,7 +2,7 @@
 stand-in identifications, and the scheduled (interpolated) inflow model.
 
 The wake identification itself is exercised by the study's subprocess test
-(tests/test_studies_design_space.py); here everything runs in milliseconds to seconds.
+(tests/studies/test_studies_design_space.py); here everything runs in milliseconds to seconds.
 """
 import inspect
 import math

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[1] / "examples" / "flight_test_identification.py"
+SCRIPT = Path(__file__).resolve().parents[2] / "examples" / "flight_test_identification.py"
 
 
 def test_flight_test_example(tmp_path, monkeypatch):

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from aircraft.provenance import check_results
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
 
 
