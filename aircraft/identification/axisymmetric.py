@@ -39,7 +39,7 @@ __all__ = ["Coaxial6StateAxisymmetric", "PITT_PETERS_COLLECTIVE_MASS"]
 
 #: Pitt-Peters' hover apparent mass 8/(3 pi) (azimuth time) on each rotor's own
 #: collective inflow: the a priori value of the scale our nearly rank-one collective
-#: lambda/C block cannot fix (``six_state_diagnostics``, README)
+#: lambda/C block cannot fix (``six_state_diagnostics`` measures that rank)
 PITT_PETERS_COLLECTIVE_MASS = {"m11": _PP_M11, "m44": _PP_M11}
 
 
