@@ -33,7 +33,7 @@ _STUDY_NAMES = "from studies import cli; print(' '.join(cli.STUDIES))"
 def test_help_is_fast_and_lists_every_study():
     # `rotorwake --help` in < 1 s means: nothing heavy imported (numba alone takes
     # ~1 s). Checked by module, not by a timer, so a loaded CI machine cannot make
-    # it flaky; the wall time itself is measured in the README's closing check.
+    # it flaky (the wall time itself is for a person to measure).
     code = ("import sys; from studies import cli\n"
             "try:\n    cli.main(['--help'])\nexcept SystemExit:\n    pass\n"
             "heavy = [m for m in ('numba', 'casadi', 'control', 'scipy', 'pandas', 'matplotlib') if m in sys.modules]\n"

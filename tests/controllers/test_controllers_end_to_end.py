@@ -1,9 +1,12 @@
-"""The README API tour's control half, run as written (library calls only)."""
+"""The control half of the library end to end: trim -> linearize -> roll design plant -> EMF -> DMO -> specs.
+
+Library calls only, on the Dynamic-Climb coaxial in hover (a shorter path than
+``examples/aircraft_to_design.py``, which the tour runs in full).
+"""
 import numpy as np
 
 
-def test_readme_api_tour_from_linearize_to_a_dmo_design():
-    # --- README snippet (keep identical to the README's API tour) ---
+def test_from_linearize_to_a_dmo_design():
     import controllers
     from aircraft import coaxial_compound
     from aircraft.inflow import DynamicClimb
@@ -19,7 +22,6 @@ def test_readme_api_tour_from_linearize_to_a_dmo_design():
     result.history                                      # boundaries, gains, most limiting spec per step
     table = controllers.evaluate_specs(result.design)   # Table 7.3 specs: value, level, margin, status
     fig = controllers.hq_window([result.design], controllers.default_specs())
-    # --- end of snippet ---
     assert result.crossover > 1.5 and np.all(result.design.gains.as_array() >= 0)
     assert {"value", "level", "margin", "met", "status"} <= set(table.columns)
     assert fig.axes
