@@ -62,11 +62,29 @@ def test_every_committed_study_folder_is_on_a_page(generator):
     assert committed - claimed <= {"hq_spec_library"}
 
 
+_REFERENCE = re.compile(r"(Eqs?\.|§|Tables?|Figs?\.|Chapters?|conclusion|mu =)\s*[\d.,\- /]+")
+
+
+def _decimals(text):
+    """Decimal numbers in a text, section/equation/table/figure references left out."""
+    return re.findall(r"\b\d+\.\d+\b", _REFERENCE.sub("", text))
+
+
 def test_the_notes_quote_no_result_numbers():
     # a decimal number in prose would go stale at the next regeneration; the notes
     # name files and columns instead (section and equation numbers are not decimals
     # of results, e.g. "Eq. 5.3", "§7.5", "Table 7.1", "Figs. 7.3-7.11")
-    reference = re.compile(r"(Eqs?\.|§|Tables?|Figs?\.|Chapters?|conclusion)\s*[\d.,\- /]+")
     for notes in (DOCS / "studies" / "_notes").glob("*.rst"):
-        text = reference.sub("", notes.read_text())
-        assert not re.findall(r"\b\d+\.\d+\b", text), notes.name
+        assert not _decimals(notes.read_text()), notes.name
+
+
+def test_every_results_folder_has_a_readme_that_says_how_to_rerun_it(generator):
+    from studies.cli import STUDIES
+    for command, study in STUDIES.items():
+        for folder, _ in generator.study_folders(study):
+            where = ROOT / "results" / folder
+            if not (where / "manifest.json").is_file():
+                continue                                   # not committed (yet)
+            text = (where / "README.md").read_text()
+            assert "rotorwake " in text and f"docs/studies/" in text, folder
+            assert not _decimals(text), folder   # no result numbers
