@@ -34,6 +34,11 @@ MAX_COLUMNS = 32
 _MARKUP = re.compile(r"[*|`]|_(\s|$)|^_|\]_")
 
 
+def summary(study):
+    """The study's one-line summary, without a pointer into the issue tracker."""
+    return re.sub(r"\s*\([Ii]ssue[ #]*\d+[^)]*\)", "", study.summary)
+
+
 def registry():
     """The CLI's registry ``{command: Study}`` (importing ``studies.cli`` is cheap)."""
     import sys
@@ -137,7 +142,7 @@ def _folder_section(folder, option, command):
 def page(command, study):
     """The reST of one study's page."""
     title = f"``rotorwake {command}``"
-    lines = [f".. _study-{command}:", "", title, "=" * len(title), "", f"*{study.summary}*", ""]
+    lines = [f".. _study-{command}:", "", title, "=" * len(title), "", f"*{summary(study)}*", ""]
     notes = os.path.join(NOTES, command + ".rst")
     if os.path.exists(notes):
         lines += [f".. include:: _notes/{command}.rst", ""]
@@ -181,7 +186,7 @@ def index(studies):
     for command, study in studies.items():
         folders = [f for f, _ in study_folders(study)]
         claimed |= set(folders)
-        lines += [f"   * - :doc:`{command}`", f"     - {study.summary}",
+        lines += [f"   * - :doc:`{command}`", f"     - {summary(study)}",
                   "     - " + ", ".join(f"``{f}``" for f in folders)]
     lines.append("")
     other = sorted(n for n in os.listdir(RESULTS) if os.path.isdir(os.path.join(RESULTS, n))) \

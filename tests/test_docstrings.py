@@ -212,7 +212,7 @@ def _docstrings_and_comments(path):
 
 
 def test_library_text_carries_no_issue_numbers_and_no_readme_pointers():
-    """Docstrings and comments say what they mean: no "issue 9, item 1", no "see README".
+    """Docstrings and comments say what they mean: no "issue 9, item 1", no "session 9", no "see README".
 
     The README is a short front page and the issue tracker is not part of the
     package; the findings live in the docs (one page per study) and in each
@@ -220,7 +220,7 @@ def test_library_text_carries_no_issue_numbers_and_no_readme_pointers():
     """
     from pathlib import Path
     root = Path(__file__).resolve().parents[1]
-    pattern = re.compile(r"[Ii]ssue[ #]*[0-9]+|README")
+    pattern = re.compile(r"[Ii]ssue[ #-]*[0-9]+|[Ii]ssue's|[Ss]ession [0-9]+|README")
     hits = [f"{path.relative_to(root)}:{line}: {pattern.search(text).group(0)}"
             for package in PACKAGES + ("studies",)
             for path in sorted((root / package).rglob("*.py"))
