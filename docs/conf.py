@@ -99,4 +99,8 @@ _write_api_page()
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import _studies  # noqa: E402
 
+# the single generated page of earlier versions, if a checkout still has it
+_old_page = os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies.rst")
+if os.path.exists(_old_page):
+    os.remove(_old_page)
 _studies.write()   # docs/studies/: one page per command of studies.cli.STUDIES
