@@ -385,8 +385,8 @@ def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources
         numba_version = numba.__version__
     except ImportError:   # pragma: no cover - a dependency
         numba_version = None
-    files = {p.name: file_sha256(p) for p in sorted(folder.iterdir()) if p.name != README_NAME
-             if p.is_file() and p.name != MANIFEST_NAME}
+    files = {p.name: file_sha256(p) for p in sorted(folder.iterdir())
+             if p.is_file() and p.name not in (MANIFEST_NAME, README_NAME)}
     root_path = Path(root) if root is not None else _project_root()
     sources = sources if sources is not None else imported_sources(root)
     manifest = {
