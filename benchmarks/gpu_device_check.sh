@@ -5,7 +5,7 @@
 #     bash benchmarks/gpu_device_check.sh
 #
 # Prints: the device and the CUDA toolkit numba found, whether
-# aircraft.wake.gpu.available() and why, the device tests of tests/test_wake_gpu.py
+# aircraft.wake.gpu.available() and why, the device tests of tests/aircraft/wake/test_wake_gpu.py
 # (GPU kernel vs CPU kernel in single and double precision, a whole tiny wake run
 # on the GPU vs the CPU within CROSS_MACHINE_RTOL), then the GPU figures of
 # benchmarks/wake.py (kernel agreement, pairs/s, one default-resolution coaxial
@@ -50,8 +50,8 @@ from aircraft.wake import gpu
 print(f"aircraft.wake.gpu.available() = {gpu.available()}: {gpu.unavailable_reason()}")
 EOF
 
-echo "== tests/test_wake_gpu.py (device tests must pass, not skip)"
-timeout 150 "$PY" -m pytest -q -rs tests/test_wake_gpu.py
+echo "== tests/aircraft/wake/test_wake_gpu.py (device tests must pass, not skip)"
+timeout 150 "$PY" -m pytest -q -rs tests/aircraft/wake/test_wake_gpu.py
 echo "pytest exit status: $?"
 
 echo "== benchmarks/wake.py --gpu-only"

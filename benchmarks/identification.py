@@ -58,7 +58,7 @@ def _timed(label, fn):
 
 
 def flight_test_methods():
-    """Each flight-test method on the case its tests use (tests/test_flightid_*.py)."""
+    """Each flight-test method on the case its tests use (tests/flightid/)."""
     import control
     import pandas as pd
     from scipy.signal import lsim

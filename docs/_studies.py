@@ -1,125 +1,217 @@
-"""Write docs/studies.rst from the committed results (called by conf.py at each build).
+"""Write the study pages, ``docs/studies/``, from the CLI's registry (called by conf.py).
 
-Each study gets its purpose (the study module's docstring, read without importing
-it), its comparison tables against the dissertation (the CSVs in its results
-folder, numbers to 4 significant digits), its figures, and the manifest of the
-run that produced them. A missing folder or file is said so on the page.
+One page per command of :data:`studies.cli.STUDIES`, so a new study gets its page
+without editing the docs. Each page holds
+
+* the hand-written notes ``docs/studies/_notes/<command>.rst``: what the study
+  asks and how to read its tables and figures (no numbers: the numbers are in
+  the tables, which come from the files);
+* the study module's docstring (read without importing the study);
+* the command and its variants (from the registry);
+* per results folder the study writes: the manifest of the committed run, every
+  CSV as a ``csv-table`` read from the file at build time (``:file:``; a table too
+  long or too wide to read on a page is offered as a download instead), and every
+  figure.
+
+A folder not committed yet is said so on the page. Results folders that no
+command writes are listed on the index page.
 """
 import ast
 import csv
-import io
 import json
-import math
 import os
+import re
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+RESULTS = os.path.join(ROOT, "results")
+PAGES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies")
+NOTES = os.path.join(PAGES, "_notes")
+#: a CSV with more data rows or columns than this is offered as a download
+MAX_ROWS = 60
+MAX_COLUMNS = 32
+# text that reST would read as markup inside a table cell (emphasis, substitution,
+# interpreted text, a reference ``name_``, a footnote ``[1]_``)
+_MARKUP = re.compile(r"[*|`]|_(\s|$)|^_|\]_")
 
-# (title, study module, results folder, comparison tables shown, command)
-STUDIES = [
-    ("Main job: hover control comparison (§7.5)", "hover_control_comparison", "hover_control_comparison",
-     ["table_7_5_characteristics.csv", "table_7_4_gains.csv"], "rotorwake main"),
-    ("Identification pipeline on an embedded truth", "identification_demo", "identification_demo",
-     ["parameters.csv", "verification.csv"], "rotorwake identification-demo"),
-    ("Single rotor: identification from our free wake (Ch. 4)", "wake_identification", "wake_identification",
-     ["coefficients.csv", "cost_table.csv", "verification.csv"], "rotorwake wake-identification"),
-    ("Coaxial rotor: 6- and 12-state identification from our free wake (Ch. 5-6)", "coaxial_wake_identification",
-     "coaxial_wake_identification", ["same_responses.csv", "parameters_6state.csv", "parameters_12state.csv",
-                                     "verification_6state.csv", "verification_12state.csv"],
-     "rotorwake coaxial-wake-identification"),
-    ("Coaxial rotor: quasi-steady check of the shipped models (held steps of the wake)", "coaxial_quasi_steady",
-     "coaxial_quasi_steady", ["table.csv", "settling.csv"], "rotorwake coaxial-quasi-steady"),
-    ("Coaxial rotor: constrained 12-state models on one data set (trust per constraint)", "twelve_state_variants",
-     "twelve_state_variants", ["table.csv"], "rotorwake twelve-state-variants"),
-    ("Coaxial rotor: design space of rotor spacing and thrust (recommendation 2)", "coaxial_design_space",
-     "coaxial_design_space", ["summary.csv"], "rotorwake coaxial-design-space"),
-    ("Single rotor in forward flight and wake distortion K_R (§4.4, §4.7)", "forward_flight_identification",
-     "forward_flight_identification", ["cost_table.csv", "coefficients.csv", "kr_constants.csv", "wall_times.csv"],
-     "rotorwake forward-flight-identification"),
-    ("Off-rotor induced velocity: tail and wing (§4.6, Eqs. 2.39-2.40)", "off_rotor_models", "off_rotor_models",
-     ["gains_delays.csv", "verification.csv", "exposure.csv"], "rotorwake off-rotor-models"),
-    ("Coaxial at 200 kt: Eq. 6.5 model and the isolated-rotor check (§6.6, Figs. 7.7-7.10)",
-     "coaxial_forward_flight", "coaxial_forward_flight", ["cost_table.csv", "verdicts.csv", "differences.csv"],
-     "rotorwake coaxial-forward-flight"),
-    ("Coaxial aircraft: hover poles (Tables 7.1/7.2)", "coaxial_hover_poles", "coaxial_hover_poles",
-     ["poles_clr.csv", "poles_id6.csv"], "rotorwake coaxial-hover-poles"),
-    ("Pitt-Peters check (Tables 4.1-4.2, Eqs. 4.7-4.8)", "pitt_peters_hover_check", "pitt_peters_hover_check",
-     ["matrices.csv", "forward_flight.csv"], "rotorwake pitt-peters-hover-check"),
-]
-MAX_ROWS = 30
+
+def summary(study):
+    """The study's one-line summary, without a pointer into the issue tracker."""
+    return re.sub(r"\s*\([Ii]ssue[ #]*\d+[^)]*\)", "", study.summary)
+
+
+def registry():
+    """The CLI's registry ``{command: Study}`` (importing ``studies.cli`` is cheap)."""
+    import sys
+    if ROOT not in sys.path:
+        sys.path.insert(0, ROOT)
+    from studies.cli import STUDIES
+    return STUDIES
+
+
+def study_folders(study):
+    """``[(folder name under results/, option that writes it or None)]`` of one study."""
+    found = []
+
+    def add(outputs, option):
+        for out in outputs:
+            path = out.format(out=study.default_out).replace("\\", "/")
+            if path.startswith("results/") and path.count("/") == 1:
+                name = path.split("/", 1)[1]
+                if name not in [f for f, _ in found]:
+                    found.append((name, option))
+
+    add(study.outputs, None)
+    for option, (_, outputs, _) in study.variants.items():
+        add(outputs, option)
+    return found
 
 
 def _docstring(module):
-    path = os.path.join(ROOT, "studies", module + ".py")
+    path = os.path.join(ROOT, *module.split(".")) + ".py"
     if not os.path.exists(path):
         return None
     with open(path) as fh:
         return ast.get_docstring(ast.parse(fh.read()))
 
 
-def _fmt(cell):
-    try:
-        value = float(cell)
-    except ValueError:
-        return cell
-    if math.isnan(value) or cell.strip().lower() in ("true", "false"):
-        return cell
-    return f"{value:.4g}"
-
-
-def _table(path, title):
+def _read_csv(path):
     with open(path, newline="") as fh:
-        rows = list(csv.reader(fh))
+        return list(csv.reader(fh))
+
+
+def _table(folder, name):
+    """reST for one CSV of ``results/<folder>/``."""
+    path = os.path.join(RESULTS, folder, name)
+    rel = f"../../results/{folder}/{name}"
+    rows = _read_csv(path)
     if not rows:
-        return []
+        return [f"``{name}`` is empty.", ""]
     header, body = rows[0], rows[1:]
-    more = len(body) - MAX_ROWS
-    body = body[:MAX_ROWS]
-    buf = io.StringIO()
-    writer = csv.writer(buf, quoting=csv.QUOTE_ALL, lineterminator="\n")
-    writer.writerow([h or " " for h in header])
-    for row in body:
-        writer.writerow([_fmt(c) or " " for c in row])
-    lines = [f".. csv-table:: {title}", "   :header-rows: 1", ""]
-    lines += ["   " + line for line in buf.getvalue().splitlines()]
+    size = f"{len(body)} rows x {len(header)} columns"
+    if (len(body) > MAX_ROWS or len(header) > MAX_COLUMNS or not body
+            or any(len(row) != len(header) for row in body)):
+        return [f"``{name}`` ({size}): :download:`download <{rel}>`", ""]
+    lines = [f".. csv-table:: ``{name}``", "   :header-rows: 1", "   :class: longtable"]
+    if not any(_MARKUP.search(cell) for row in rows for cell in row) and all(h.strip() for h in header):
+        # the file itself, read at build time
+        return lines + [f"   :file: {rel}", ""]
+    # a cell reST would read as markup: the same file, its cells escaped (still read at build time)
     lines.append("")
-    if more > 0:
-        lines += [f"({more} more rows in ``{os.path.relpath(path, ROOT)}``)", ""]
+    for row in rows:
+        cells = []
+        for cell in row:
+            text = cell.replace("\\", "\\\\")
+            text = re.sub(r"([*|`_\[\]])", r"\\\1", text) if text.strip() else "\\ "
+            cells.append('"' + text.replace('"', '""') + '"')
+        lines.append("   " + ", ".join(cells))
+    return lines + [""]
+
+
+def _folder_section(folder, option, command):
+    where = os.path.join(RESULTS, folder)
+    title = f"``results/{folder}/``"
+    lines = [title, "~" * len(title), ""]
+    if option:
+        lines += [f"Written by ``rotorwake {command} {option}``.", ""]
+    if not os.path.isdir(where):
+        return lines + [f"*No committed results in* ``results/{folder}/`` *yet.*", ""]
+    manifest = os.path.join(where, "manifest.json")
+    if os.path.exists(manifest):
+        with open(manifest) as fh:
+            m = json.load(fh)
+        lines += [f"The committed run: ``{m.get('command', '?')}``, {m.get('date', '?')}, code "
+                  f"``{m.get('code', {}).get('git', '?')}`` (``results/{folder}/manifest.json``).", ""]
+    else:
+        lines += ["*This folder carries no manifest.*", ""]
+    if os.path.exists(os.path.join(where, "README.md")):
+        lines += [f"``results/{folder}/README.md`` says what each file holds.", ""]
+    names = sorted(os.listdir(where))
+    for name in names:
+        if name.endswith(".csv"):
+            lines += _table(folder, name)
+    for name in names:
+        if name.endswith(".png"):
+            lines += [f".. figure:: ../../results/{folder}/{name}", "   :width: 100%", "",
+                      f"   ``results/{folder}/{name}``", ""]
+    others = [n for n in names if not n.endswith((".csv", ".png")) and n not in ("manifest.json", "README.md")]
+    for name in others:
+        lines += [f"``{name}``: :download:`download <../../results/{folder}/{name}>`", ""]
     return lines
 
 
-def write(path):
+def page(command, study):
+    """The reST of one study's page."""
+    title = f"``rotorwake {command}``"
+    lines = [f".. _study-{command}:", "", title, "=" * len(title), "", f"*{summary(study)}*", ""]
+    notes = os.path.join(NOTES, command + ".rst")
+    if os.path.exists(notes):
+        lines += [f".. include:: _notes/{command}.rst", ""]
+    lines += ["How to run it", "-------------", "", ".. code-block:: text", "",
+              f"    rotorwake {command}    # rotorwake {command} --help lists its options"]
+    for option, (_, _, note) in study.variants.items():
+        lines += [f"    rotorwake {command} {option}    # {note}"]
+    lines += [""]
+    if study.cached_note:
+        lines += [f"A second run is faster: {study.cached_note}.", ""]
+    if not study.in_results:
+        lines += ["``rotorwake results`` does not rerun it.", ""]
+    doc = _docstring(study.module)
+    if doc:
+        lines += ["The study module", "----------------", "", f"``{study.module}``:", "", "::", ""]
+        lines += ["    " + line if line else "" for line in doc.splitlines()] + [""]
+    lines += ["Results", "-------", ""]
+    for folder, option in study_folders(study):
+        lines += _folder_section(folder, option, command)
+    return "\n".join(lines) + "\n"
+
+
+def index(studies):
+    """The reST of ``docs/studies/index.rst``."""
     lines = ["Studies", "=======", "",
-             "Each study is a thin script over the library; it writes tables (CSV) and figures",
-             "(PNG) to ``results/<study>/`` with a ``manifest.json`` (:doc:`reproducibility`).",
-             "This page is generated from the committed results at each build: the numbers",
-             "are ours, and the dissertation's appear only in columns that say so.", ""]
-    for title, module, folder, tables, command in STUDIES:
-        lines += [title, "-" * len(title), ""]
-        doc = _docstring(module)
-        if doc:
-            lines += ["::", ""] + ["    " + line for line in doc.splitlines()] + [""]
-        lines += [f"Run: ``{command}`` (see ``{command} --help``).", ""]
-        where = os.path.join(ROOT, "results", folder)
-        if not os.path.isdir(where):
-            lines += [f"*No committed results in* ``results/{folder}/`` *yet.*", ""]
-            continue
-        manifest = os.path.join(where, "manifest.json")
-        if os.path.exists(manifest):
-            with open(manifest) as fh:
-                m = json.load(fh)
-            lines += [f"Computed {m['date']} with code ``{m['code']['git']}`` in {m['wall_time_s']:.0f} s "
-                      f"on {m['machine']['cores']} cores.", ""]
-        else:
-            lines += ["*These results carry no manifest yet (written before* ``rotorwake`` *existed).*", ""]
-        for name in tables:
-            table = os.path.join(where, name)
-            if os.path.exists(table):
-                lines += _table(table, f"``{name}``")
-        for name in sorted(os.listdir(where)):
-            if name.endswith(".png"):
-                lines += [f".. figure:: ../results/{folder}/{name}", "   :width: 100%", "",
-                          f"   ``results/{folder}/{name}``", ""]
-    text = "\n".join(lines) + "\n"
+             "Each study is a thin script over the library, run by one command of the",
+             "``rotorwake`` command line (:doc:`../cli`). It writes tables (CSV) and figures",
+             "(PNG) to ``results/<study>/`` with a ``manifest.json`` (:doc:`../reproducibility`),",
+             "and each folder's ``README.md`` says what its files hold.",
+             "",
+             "These pages are generated from the command line's registry",
+             "(``studies.cli.STUDIES``) and from the committed results at each build: every",
+             "table is read from its CSV file, so the numbers on a page are those of the",
+             "committed run. The dissertation's numbers appear only in columns that say so.",
+             "What the models and the studies cannot do yet is on one page, :doc:`../limits`.",
+             "", ".. toctree::", "   :maxdepth: 1", ""]
+    lines += [f"   {command}" for command in studies] + [""]
+    lines += [".. list-table::", "   :header-rows: 1", "", "   * - command", "     - what it does",
+              "     - results folders"]
+    claimed = set()
+    for command, study in studies.items():
+        folders = [f for f, _ in study_folders(study)]
+        claimed |= set(folders)
+        lines += [f"   * - :doc:`{command}`", f"     - {summary(study)}",
+                  "     - " + ", ".join(f"``{f}``" for f in folders)]
+    lines.append("")
+    other = sorted(n for n in os.listdir(RESULTS) if os.path.isdir(os.path.join(RESULTS, n))) \
+        if os.path.isdir(RESULTS) else []
+    other = [n for n in other if n not in claimed]
+    if other:
+        lines += ["Results folders that no command writes (each has its own ``README.md``):", ""]
+        lines += [f"* ``results/{n}/``" for n in other] + [""]
+    return "\n".join(lines) + "\n"
+
+
+def _write(path, text):
     if not os.path.exists(path) or open(path).read() != text:
         with open(path, "w") as fh:
             fh.write(text)
+
+
+def write(pages=PAGES):
+    """Write ``index.rst`` and one page per study into ``pages``; remove pages of removed studies."""
+    studies = registry()
+    os.makedirs(pages, exist_ok=True)
+    wanted = {"index.rst"} | {f"{command}.rst" for command in studies}
+    for name in os.listdir(pages):
+        if name.endswith(".rst") and name not in wanted:
+            os.remove(os.path.join(pages, name))
+    _write(os.path.join(pages, "index.rst"), index(studies))
+    for command, study in studies.items():
+        _write(os.path.join(pages, f"{command}.rst"), page(command, study))

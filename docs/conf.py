@@ -22,7 +22,7 @@ autodoc_member_order = "bysource"
 autodoc_default_options = {"members": True, "undoc-members": False, "show-inheritance": False}
 # re-exported names would be documented twice (package and module): document modules only
 autodoc_typehints = "none"
-exclude_patterns = ["_build"]
+exclude_patterns = ["_build", "studies/_notes"]   # notes are included by the study pages
 html_theme = "alabaster"
 html_static_path = ["_static"]
 html_theme_options = {"description": "rotor wake identification and coaxial flight control"}
@@ -99,4 +99,8 @@ _write_api_page()
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import _studies  # noqa: E402
 
-_studies.write(os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies.rst"))
+# the single generated page of earlier versions, if a checkout still has it
+_old_page = os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies.rst")
+if os.path.exists(_old_page):
+    os.remove(_old_page)
+_studies.write()   # docs/studies/: one page per command of studies.cli.STUDIES

@@ -1,7 +1,7 @@
 """What the CIFER cost cannot see: flat directions, rank-deficient blocks, start dependence.
 
-A fit can reach a small J and still be meaningless (§6.4; issue 9's coaxial
-diagnosis): a direction in parameter space along which J does not change (the
+A fit can reach a small J and still be meaningless (§6.4; found on a coaxial
+hover fit): a direction in parameter space along which J does not change (the
 parameters move together, their Cramér-Rao bounds are huge, the optimum is not
 unique), a square block of the response matrix whose small singular value the
 element-wise cost ignores, or an optimum that depends on the start. This
@@ -33,7 +33,7 @@ __all__ = ["NoInformationError", "DegeneracyReport", "MultiStartReport", "FLAT_R
 
 #: A Hessian eigenvalue below ``FLAT_RATIO`` times the largest (relative units)
 #: spans a flat direction. Rounding of the central-difference Jacobian puts an
-#: exact redundancy near 1e-16..1e-20; the degenerate coaxial fit of issue 9
+#: exact redundancy near 1e-16..1e-20; a degenerate coaxial hover fit
 #: sat at 1e-13; well-posed fits of up to ~50 parameters stay above ~1e-9.
 FLAT_RATIO = 1e-10
 #: ... or one along which the relative Cramér-Rao bound exceeds 10,000 %

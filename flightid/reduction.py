@@ -9,8 +9,8 @@ J_ave rose by at most ``max_rise_average`` and no single cost by more than
 the next candidate.  Stops when no untried candidate remains.
 
 A removal is also refused when the re-fit has no finite optimum -- what the
-cost cannot show (issue 9: removing one delay let the collective M and Lbar
-run to infinity along a flat direction at almost no cost): a parameter that
+cost cannot show (on a coaxial hover fit, removing one delay let the collective
+M and Lbar run to infinity along a flat direction at almost no cost): a parameter that
 grows by orders of magnitude (``runaway_factor``), a Hessian condition number
 that blows up (``max_condition``), or a new flat direction. The log says why.
 Parameters a removal leaves without any influence (the pole of a mode whose

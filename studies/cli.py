@@ -112,7 +112,7 @@ STUDIES = {s.command: s for s in (
           10.0, default_out="results/six_state_scan",   # 565 s measured, wake cached
           cached_note="wake runs cached under .cache/wake (the shipped 6-state's; about 6 min more without them)"),
     Study("coaxial-design-space", "studies.coaxial_design_space",
-          "6-state coaxial inflow model across rotor spacing x thrust, scheduled (issue 14, item 4)", 25.0,
+          "6-state coaxial inflow model across rotor spacing x thrust, scheduled", 25.0,
           default_out="results/coaxial_design_space",
           cached_note="wake runs cached under .cache/wake (about 3 min after)",
           variants={"--no-cache": (40.0, ("{out}",), "the wake runs recomputed, so timing.csv holds the data "
@@ -141,7 +141,7 @@ STUDIES = {s.command: s for s in (
           variants={"--wake=coarse": (4.0, ("{out}",), "wake runs cached under .cache/wake"),
                     "--no-cache": (13.0, ("{out}",), "the wake runs recomputed, so its wall times are the data sets'")}),
     Study("wake-length-check", "studies.wake_length_check",
-          "coaxial hover cyclic/collective responses on 3x the far wake and 2x the free wake (issue 9, item 1)",
+          "coaxial hover cyclic/collective responses on 3x the far wake and 2x the free wake",
           6.0, default_out="results/wake_length_check", cached_note="wake runs cached under .cache/wake"),
     Study("roll-design-sensitivity", "studies.roll_design_sensitivity",
           "which cyclic each stick drives (control phase), 100/200 kt lift-offset trims, case A against the "

@@ -34,7 +34,7 @@ from aircraft.identification.design_space import SPACINGS, THRUSTS
 from aircraft.wake import WakeSettings
 
 COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
-# --small: the tiny wake of tests/test_identification_pipeline.py (20 deg, 1.5 revs, 5 elements)
+# --small: the tiny wake of tests/aircraft/identification/test_identification_pipeline.py (20 deg, 1.5 revs, 5 elements)
 TINY = WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=5)
 
 

@@ -109,7 +109,8 @@ def heave_closed_form(trim_result):
     return zw / heli.config.mass
 
 
-#: the coaxial's assumption values before issue 11 (for the "previously" column of the reasons)
+#: the coaxial's earlier assumption values of the inertias and the blade flap inertia
+#: (for the "previously" column of the reasons)
 PREVIOUS = {"Ixx": 12000.0, "Iyy": 60000.0, "Izz": 55000.0, "flap_inertia": 4700.0}
 
 

@@ -51,7 +51,7 @@ TABLE_6_1 = {("lam0_U", "CT_U"): 5.0, ("lam0_L", "CT_U"): 11.1, ("lam1c_U", "CM_
 STRUCTURE = Coaxial6State("rotor")
 # the shipped structure (regenerate.RECIPES): Eq. 6.3 plus the 6-state's delays and the cyclic
 # loads feeding the cyclic far wake (Eq. 6.3 alone: J_ave 81-89 on the twelve lambda/C pairs
-# of our wake against 43 with them, session 9)
+# of our wake against 43 with them, in the run that chose the structure)
 STRUCTURE_12 = Coaxial12State("rotor", delays=True, far_wake_loads=True)
 CT_SYSTEM = COAXIAL_HOVER_6STATE.condition["CT_U"] + COAXIAL_HOVER_6STATE.condition["CT_L"]
 

@@ -1,6 +1,6 @@
 """Off-rotor induced-velocity models of the single rotor at the tail and a wing under the hub (§4.6).
 
-Mission: issue 12, item 2, on our models only, through the library
+The dissertation's off-rotor models, identified on our wake only, through the library
 (:func:`aircraft.identification.identify_off_rotor`): wake trim of the UH-60-like
 rotor at C_T = 0.0061, in hover and at mu = 0.1 -> one swashplate sweep per control
 with the wake's velocity recorded at 7 points along the horizontal tail's quarter

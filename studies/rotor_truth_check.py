@@ -17,7 +17,7 @@ inequality coefficient (TIC) of flap-rate and load responses against (a) on
 the doublets (all signals about their pre-input mean and averaged over one
 blade passage alike), and Bode overlays from the sweep (same chirp-z processing).
 Our rotors run their linearisation about the trim (0.02 rad inputs; the
-nonlinear run agrees to TIC < 1e-4, ``tests/test_rotor_stand.py``).
+nonlinear run agrees to TIC < 1e-4, ``tests/aircraft/helicopter/test_rotor_stand.py``).
 
 Wake resolution: 15 deg steps, 3 free revolutions, 6 elements (coarser than the
 identification's defaults, for 2 shared cores); cached in ``.cache/wake``.

@@ -6,7 +6,7 @@ cached) to get the joint input-output lambda/C, then fits every member of
 or 2 to 25 rad/s; apparent masses free, the collective diagonal or the whole
 diagonal held at Pitt-Peters'; no feedthrough or a cross-rotor feedthrough) from
 several starts, reduces the best with the guideline thresholds, and says which
-member meets the issue's target (every bound < 20 %, insensitivity < 10 %, no flat
+member meets the trust target (every bound < 20 %, insensitivity < 10 %, no flat
 direction, J_ave <= 100) (:func:`aircraft.identification.six_state_scan.six_state_scan`).
 
 Writes ``results/six_state_scan/``: ``table.csv`` (one row per candidate),
@@ -16,7 +16,7 @@ Writes ``results/six_state_scan/``: ``table.csv`` (one row per candidate),
 
 Run: ``rotorwake six-state-scan`` (``--n-jobs``: worker processes for the wake and
 the scan). It has no small configuration; the tests check the library pieces on
-exact data (``tests/test_six_state_scan.py``).
+exact data (``tests/aircraft/identification/test_six_state_scan.py``).
 """
 from __future__ import annotations
 

@@ -25,7 +25,7 @@ output: wake and model change), ``steady_gains.png``.
 Run: ``rotorwake twelve-state-variants``. It has no small configuration: on a tiny wake
 (20 deg steps, 1.5 revolutions, 12 s sweeps) the lambda/beta_dot responses carry no
 coherent point and the staged fit stops, so the tests check the library pieces
-(``tests/test_twelve_state_variants.py``) and this run is the committed one.
+(``tests/aircraft/identification/test_twelve_state_variants.py``) and this run is the committed one.
 """
 from __future__ import annotations
 

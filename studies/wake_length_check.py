@@ -1,6 +1,6 @@
 """Is the coaxial hover wake's low-frequency cyclic response converged in wake length?
 
-Issue 9, item 1: the lower rotor's on-axis cyclic response lambda1s_L/theta1s_L has
+The question: the lower rotor's on-axis cyclic response lambda1s_L/theta1s_L has
 a flat magnitude but a phase that drifts by ~60 deg between 0.7 and 5 rad/s, which
 no first-order (Eq. 5.3) row can fit. This study sweeps theta1s_L and theta0_U
 (the same seeds and inputs as the identification) on the default coaxial hover

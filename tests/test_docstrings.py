@@ -191,3 +191,38 @@ def test_the_checker_catches_what_it_claims():
     assert "physical parameter 'omega' states no [unit]" in problems
     assert _problems("g", documented) == []
     assert _problems("h", lambda y: None) == ["no docstring"]
+
+
+def _docstrings_and_comments(path):
+    """(line, text) of every docstring and comment of one source file."""
+    import ast
+    import io
+    import tokenize
+    source = path.read_text()
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            doc = ast.get_docstring(node, clean=False)
+            if doc:
+                found.append((node.body[0].lineno, doc))
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.COMMENT:
+            found.append((tok.start[0], tok.string))
+    return found
+
+
+def test_library_text_carries_no_issue_numbers_and_no_readme_pointers():
+    """Docstrings and comments say what they mean: no "issue 9, item 1", no "session 9", no "see README".
+
+    The README is a short front page and the issue tracker is not part of the
+    package; the findings live in the docs (one page per study) and in each
+    ``results/<study>/README.md``.
+    """
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1]
+    pattern = re.compile(r"[Ii]ssue[ #-]*[0-9]+|[Ii]ssue's|[Ss]ession [0-9]+|README")
+    hits = [f"{path.relative_to(root)}:{line}: {pattern.search(text).group(0)}"
+            for package in PACKAGES + ("studies",)
+            for path in sorted((root / package).rglob("*.py"))
+            for line, text in _docstrings_and_comments(path) if pattern.search(text)]
+    assert not hits, hits

@@ -20,7 +20,7 @@ reflection for the cross-rotor blocks in our mirrored frames. Eq. 5.3 is the
 to each of ``M`` and ``Lbar`` (``m23, m56, m26, m53``; ``l23, l56, l26, l53``),
 with the delays of the block they sit in: 32 parameters, the most general
 first-order 6-state with Eq. 5.3's states and delays that a hover wake can
-have (``tests/test_coaxial_hover_symmetry.py`` checks that the invariant
+have (``tests/aircraft/identification/test_coaxial_hover_symmetry.py`` checks that the invariant
 matrices are exactly this 12-dimensional set).
 
 Why it exists: our coaxial hover wake's measured lambda/C has coherent
@@ -39,7 +39,7 @@ __all__ = ["Coaxial6StateAxisymmetric", "PITT_PETERS_COLLECTIVE_MASS"]
 
 #: Pitt-Peters' hover apparent mass 8/(3 pi) (azimuth time) on each rotor's own
 #: collective inflow: the a priori value of the scale our nearly rank-one collective
-#: lambda/C block cannot fix (``six_state_diagnostics``, README)
+#: lambda/C block cannot fix (``six_state_diagnostics`` measures that rank)
 PITT_PETERS_COLLECTIVE_MASS = {"m11": _PP_M11, "m44": _PP_M11}
 
 
@@ -202,7 +202,7 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
 
         On our coaxial hover wake the 4-20 rad/s start has Pitt-Peters-sized cyclic
         masses; on exact data of a model with 0.1 s cross-rotor delays only the
-        1-10 rad/s start is stable (``tests/test_coaxial_6state_axisymmetric.py``).
+        1-10 rad/s start is stable (``tests/aircraft/identification/test_coaxial_6state_axisymmetric.py``).
         """
         out = []
         for lo, hi in self.bands:

@@ -28,7 +28,7 @@ differ. Between the two every signal is multiplied by ``s = +-1``
 signals ``lam1sN_L, lam1sF_L, CL_L``), ``F_o = T_x F_d T_x``,
 ``G_o = T_x G_d T_u``, ``C_o = C_d`` (the summing matrix is invariant):
 :meth:`CoaxialForward12State.published_values` converts the printed
-Eqs. 6.12-6.13 that way, and ``tests/test_coaxial_forward.py`` checks that the
+Eqs. 6.12-6.13 that way, and ``tests/aircraft/identification/test_coaxial_forward.py`` checks that the
 converted model's lambda/C responses are the printed ones with the lower rotor's
 lateral rows and columns negated. Parameters are ``f<row>_<col>`` and
 ``g<row>_<col>``, 1-based, in Eq. 6.4's state order and the canonical load order

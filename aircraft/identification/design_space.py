@@ -15,8 +15,8 @@ space). The points are identified one after another; each one's independent wake
 runs (six sweeps, a doublet and a zero-input run) fan out through the executor of
 :func:`aircraft.wake.run_sweeps`, so a point costs what one
 :func:`identify_inflow` costs (coarse wake: about 3 min of 2 idle cores).
-``scheduler`` is passed on to :func:`identify_inflow` once it takes one (the Dask
-executor of issue 14, item 1); until then giving one raises.
+``scheduler`` is passed on to :func:`identify_inflow` once it takes one (a Dask
+scheduler for the wake runs); until then giving one raises.
 """
 from __future__ import annotations
 

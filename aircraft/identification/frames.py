@@ -20,7 +20,7 @@ The dissertation's printed coaxial models (Eq. 5.3, Eqs. 6.8-6.9)
 ----------------------------------------------------------------
 are written in one common frame for both rotors, the upper rotor's sense of
 rotation (its pitch/roll symmetry ties ``m25 = m36``, ``m52 = m63`` hold only in a
-common frame, see ``tests/test_frames.py``; our own wake measures
+common frame, see ``tests/aircraft/identification/test_frames.py``; our own wake measures
 ``lam1s_L/CL_U = +12.3`` and ``lam1c_L/CM_U = -11.9`` at 1 rad/s where the printed
 Eq. 5.3 gives ``-11.3`` and ``-11.3``). Between the common frame (subscript d) and
 our frames (subscript o) every signal is multiplied by a sign ``s = +-1``:

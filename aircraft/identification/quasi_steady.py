@@ -4,7 +4,7 @@ A model fitted over 1-25 rad/s says nothing about what it does below its band, a
 that is where an aircraft's slow modes live. Our coaxial 12-state model, fitted on
 1-25 rad/s, had far-wake poles at -0.018 and -0.286 1/s and a steady
 lambda1s/C_L block 60-140x the wake's; flown in the aircraft it left an unstable
-inflow-rotor mode (README, "Quasi-steady check"). The guard holds a small step of
+inflow-rotor mode (the ``coaxial-quasi-steady`` study). The guard holds a small step of
 each swashplate control in the wake, averages the loads and inflow over a late
 window, and compares the inflow change with what the model's DC gain predicts from
 the load change of the same record::

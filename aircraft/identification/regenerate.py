@@ -4,7 +4,7 @@ Each shipped model has a *recipe* here (configuration, flight condition,
 structure, trim thrust, :class:`IdentificationSettings`). Regenerating runs
 :func:`aircraft.identification.identify_inflow` with it (wake runs cached in
 ``.cache/wake``) and writes ``aircraft/data/models/NAME.json``. The settings hash
-in each file is what ``tests/test_model_store.py`` compares with the recipe, so a
+in each file is what ``tests/aircraft/identification/test_model_store.py`` compares with the recipe, so a
 change of any input (wake code version, settings, pipeline) shows up as a stale
 file instead of a silently outdated model.
 

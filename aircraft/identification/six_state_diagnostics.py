@@ -30,7 +30,7 @@ The rows report the cost on the rotors' own 12 lambda/C pairs (the pairs of
 Table 5.1) whatever coordinates the fit used, so that they compare. Note that
 the Cramer-Rao bound of the CIFER convention is a curvature of *the cost*, not
 a calibrated standard deviation: an orthonormal change of coordinates of the
-same data changes it (``tests/test_flightid_transformed.py`` shows a factor
+same data changes it (``tests/flightid/test_flightid_transformed.py`` shows a factor
 ~1.8 on synthetic data at an unchanged true error). A bound below 20 % in one
 set of coordinates is therefore not, alone, a trusted model.
 """

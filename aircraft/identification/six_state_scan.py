@@ -1,6 +1,6 @@
 """Is there a trustworthy 6-state in the Eq. 5.3 family for our coaxial wake? A scan.
 
-The issue's target for a 6-state identified from our wake is the CIFER guideline
+The target for a 6-state identified from our wake is the CIFER guideline
 set: every kept parameter with a Cramér-Rao bound below 20 % and an
 insensitivity below 10 %, no flat direction, J_ave below 100. The shipped
 ``coaxial_hover_6state`` meets the cost (107.8, close) but not the bounds (37-64 %

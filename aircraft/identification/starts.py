@@ -14,7 +14,7 @@ Why this exists: on exact data of a physically sized coaxial 6-state model the
 fit from :meth:`Coaxial6State.initial_values` (Pitt-Peters ``M``, zero cross
 masses) stops at J_ave ~690 with the collective cross masses of the wrong sign,
 and eight scattered starts reach only 643; from :func:`equation_error_start` it
-recovers every parameter (``tests/test_coaxial_6state_start.py``).
+recovers every parameter (``tests/aircraft/identification/test_coaxial_6state_start.py``).
 
 A start of :func:`identify_inflow` through :meth:`Coaxial6State.extra_starts`
 (since ``pipeline-4``), offered only when stable. On our default coaxial hover

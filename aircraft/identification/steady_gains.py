@@ -33,7 +33,7 @@ inflow structure of ours has a tilt input (Eqs. 6.2-6.3 take flap rates). A fit
 on flap rates alone can mimic ``G_T beta = G_T beta_dot / s`` only by a slow pole,
 an approximate integrator, which then reads as a large steady K_R. Estimated
 without the tilt inputs (``tilts=()``), the same records give the upper rotor
-K_R ~13; with them, ~0 (README, "Steady gains of the wake").
+K_R ~13; with them, ~0 (the ``twelve-state-variants`` study's ``steady_gains.csv``).
 
 The estimate is quasi-static: a path lagging by ``tau`` biases a ramp's rate
 gains by ``-tau (G_C dC/dt / beta_dot + G_T)`` (tested on a known system). The

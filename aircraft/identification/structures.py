@@ -356,7 +356,7 @@ class Coaxial6State(InflowStructure):
 
         On exact data of a physically sized 6-state model the :meth:`initial_values`
         start stops at J_ave ~690 and this one recovers the model
-        (``tests/test_coaxial_6state_start.py``). On our default coaxial hover wake it
+        (``tests/aircraft/identification/test_coaxial_6state_start.py``). On our default coaxial hover wake it
         is unstable (the lower rotor's collective mass comes out at -0.18) and is not
         offered; a fit from an unstable start is refused anyway.
         """

@@ -15,8 +15,8 @@ model should be asked to fit it.
                                                   |H| [dB], phase [deg], coherence,
                                                   differences to the base
 
-Used by ``studies/wake_length_check.py`` (issue 9, item 1: the coaxial hover
-cyclic data's low-frequency phase).
+Used by ``studies/wake_length_check.py`` (is the coaxial hover cyclic data's
+low-frequency phase converged in wake length?).
 """
 from __future__ import annotations
 

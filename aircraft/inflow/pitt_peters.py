@@ -26,7 +26,7 @@ Eq. 2.11 and Tables 4.1-4.2 come from. The matrices used here:
               [X,     0,              -4 sin a/(1+sin a)]],   X = 15 pi/64 tan(chi/2)
 
   Open codes disagree on the sign of X relative to the moment signs. Ours is
-  fixed by two independent checks (both in ``tests/test_inflow_pitt_peters.py``):
+  fixed by two independent checks (both in ``tests/aircraft/inflow/test_inflow_pitt_peters.py``):
   a positive thrust gives more inflow at the rear of the disk (steady
   ``lam1c = (15 pi/32) tan(chi/2) lam0 > 0``, Glauert/Coleman), and Lbar13, Lbar31
   have the signs (both positive) of the free-wake identifications of Eqs.

@@ -55,7 +55,7 @@ Suspected transcription errors and oddities (values are kept exactly as printed)
 * Eqs. 6.12-6.13 (200 kt): F_UU has positive diagonal entries (+2.76, +15.64) and
   lam0F_L has neither self-damping (F_LL[1, 1] = 0) nor load input (G row 8 all
   zero); the coupled 12x12 F is nevertheless stable as printed (slowest pole
-  -1.19 1/s, checked in ``tests/test_inflow_identified.py``).
+  -1.19 1/s, checked in ``tests/aircraft/inflow/test_inflow_identified.py``).
 """
 from __future__ import annotations
 

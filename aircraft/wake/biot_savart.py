@@ -35,7 +35,7 @@ alike). The former ``fastmath`` loop vectorised each sum across the segments, so
 its rounding depended on the vector width of the machine.
 
 A whole wake run is bit-identical on one machine (tested in
-``tests/test_reproducible.py``). Across machines the numpy/BLAS/libm parts of the
+``tests/aircraft/wake/test_reproducible.py``). Across machines the numpy/BLAS/libm parts of the
 march (trigonometry, small dense solves) may round differently in the last bit;
 the test there perturbs the inputs at that level and holds the marched loads and
 inflow to the stated cross-machine tolerance :data:`CROSS_MACHINE_RTOL`.

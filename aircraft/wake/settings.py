@@ -35,7 +35,7 @@ class WakeSettings:
         on the resolution (kappa 1.05-1.30), the lam0/C_T gain 0.3-1.5x
         1/(4 lambda_h) and trims fail at 10 deg steps. Rigid to 60 deg, kappa is
         1.14-1.16 and the gain 1.03-1.28x at 10-15 deg steps and 2-4 revolutions
-        of wake (issue-3 note).
+        of wake (measured when the rigid near wake was introduced).
     near_wake_extent_forward : float
         The same in forward flight (advance ratio >= 0.05) [rad] (default 30 deg):
         there the young vortex is swept clear of the blades, and the 60 deg near
