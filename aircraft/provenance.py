@@ -18,7 +18,8 @@ Every results folder written through the ``rotorwake`` command line carries a
   Python / numpy / numba versions, and the Biot-Savart ``kernel_backend`` the wake
   runs used: a module of :data:`BACKEND_CODE`, the GPU kernel, can only have
   computed a folder's numbers if its run used that backend);
-* ``files``: the SHA-256 of every file in the folder but its hand-written ``README.md``.
+* ``files``: the SHA-256 of every file in the folder but its hand-written description
+  (:data:`README_NAME`).
 
 :func:`check_results` re-hashes those modules and files: a folder is *stale*
 when the code of a module it was computed with has changed since (its bytes differ

@@ -11,6 +11,7 @@ Runs in about a minute; ``rotorwake main`` does this for three cases A/B/C.
 import controllers
 from aircraft import coaxial_compound
 from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, modes, trim
+from aircraft.helicopter.hold import hold_states
 from aircraft.inflow import DynamicClimb
 
 # 1. aircraft + inflow model -> trim -> linear model with named signals
@@ -22,10 +23,12 @@ aircraft = linearize(hover)                   # control.StateSpace: pilot inputs
 print(modes(aircraft)[["frequency", "damping", "dominant_states"]].head(8).to_string(index=False))
 
 # 2. the single-axis roll plant p/delta_lat with pitch, yaw and heave held
-#    (Eq. 7.21). roll_design_plant drops psi (a pure integrator that feeds back
-#    into nothing), takes the exact coupling numerator, residualises its fast
+#    (Eq. 7.21), and the translational drift u, v held by an assumed position-hold
+#    outer loop (left free, the hover phugoid and the drift's zero at the origin
+#    leave no design). roll_design_plant drops psi (a pure integrator that feeds
+#    back into nothing), takes the exact coupling numerator, residualises its fast
 #    constraint-loop poles above 60 rad/s and takes a minimal realisation.
-plant = controllers.roll_design_plant(aircraft)
+plant = controllers.roll_design_plant(hold_states(aircraft, ["u", "v"]))
 
 # 3. explicit model following (Fig. 7.12): command model, actuator, sensor delay,
 #    PID starting gains; then DMO raises the crossover and DRB boundaries

@@ -11,10 +11,12 @@ def test_from_linearize_to_a_dmo_design():
     from aircraft import coaxial_compound
     from aircraft.inflow import DynamicClimb
     from aircraft.helicopter import Helicopter, HelicopterSettings, trim, linearize
+    from aircraft.helicopter.hold import hold_states
 
     heli = Helicopter(coaxial_compound(), DynamicClimb(), HelicopterSettings(n_span=8, n_average=1))
     sys = linearize(trim(heli))                         # control.StateSpace, named signals
-    plant = controllers.roll_design_plant(sys)          # p/delta_lat | q, r, w held (Eq. 7.21)
+    # p/delta_lat | q, r, w held (Eq. 7.21), u and v held by an assumed outer loop
+    plant = controllers.roll_design_plant(hold_states(sys, ["u", "v"]))
     design = controllers.EMFDesign(plant, controllers.PIDGains(0.3, 0.1, 0.05),
                                    controllers.CommandModel(4.0, 0.7, 0.05),
                                    controllers.second_order_actuator(35.0, 0.7), sensor_delay=0.01)
