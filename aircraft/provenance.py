@@ -19,7 +19,7 @@ Every results folder written through the ``rotorwake`` command line carries a
   runs used: a module of :data:`BACKEND_CODE`, the GPU kernel, can only have
   computed a folder's numbers if its run used that backend);
 * ``files``: the SHA-256 of every file in the folder but its hand-written description
-  (:data:`README_NAME`).
+  (:data:`RESULTS_DESCRIPTION`).
 
 :func:`check_results` re-hashes those modules and files: a folder is *stale*
 when the code of a module it was computed with has changed since (its bytes differ
@@ -53,7 +53,7 @@ __all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "BACKEND_CODE", "ResultsManifest
 #: File name of the manifest in each results folder.
 MANIFEST_NAME = "manifest.json"
 #: A results folder's own description (written by hand, not by the study): never hashed.
-README_NAME = "README.md"
+RESULTS_DESCRIPTION = "README.md"
 #: Packages whose imported modules are recorded (the project's own code).
 PROJECT_PACKAGES = ("flightid", "aircraft", "controllers", "studies")
 # bookkeeping modules that cannot change a number: not recorded
@@ -387,7 +387,7 @@ def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources
     except ImportError:   # pragma: no cover - a dependency
         numba_version = None
     files = {p.name: file_sha256(p) for p in sorted(folder.iterdir())
-             if p.is_file() and p.name not in (MANIFEST_NAME, README_NAME)}
+             if p.is_file() and p.name not in (MANIFEST_NAME, RESULTS_DESCRIPTION)}
     root_path = Path(root) if root is not None else _project_root()
     sources = sources if sources is not None else imported_sources(root)
     manifest = {
@@ -472,7 +472,7 @@ def check_results(results_root="results", root=None):
         edited = [name for name, digest in manifest["files"].items()
                   if not (folder / name).is_file() or file_sha256(folder / name) != digest]
         extra = sorted(p.name for p in folder.iterdir()
-                       if p.is_file() and p.name not in (MANIFEST_NAME, README_NAME)
+                       if p.is_file() and p.name not in (MANIFEST_NAME, RESULTS_DESCRIPTION)
                        and p.name not in manifest["files"])
         if changed:
             status, detail = "stale", "code changed since the run: " + ", ".join(changed)
