@@ -136,7 +136,7 @@ class DMOSettings:
     polish_evaluations: int = 25
     gain_upper: float = 50.0
     backoff: float = 0.01
-    global_samples: int = 128
+    global_samples: int = 64
     global_candidates: int = 2
     global_scale_span: tuple = (0.2, 10.0)
     verify_tolerance_db: float = 0.5   #: optimiser vs python-control GM agreement
