@@ -96,12 +96,15 @@ def _with_rotors(cfg, **changes):
 def sensitivity_table():
     base = coaxial_compound()
     inertia = base.rotors[0].flap_inertia
+    derived = derive_control_phase(linearize(trim(Helicopter(base, DynamicClimb(), HOVER)), inputs="rotor"), base)
     variants = [("baseline", "", base),
                 ("flap frequency", "1.4/rev", _with_rotors(base, flap_frequency=1.4)),
                 ("flap frequency", "1.6/rev", _with_rotors(base, flap_frequency=1.6)),
                 ("Lock number", "x 1.25 (flap inertia / 1.25)", _with_rotors(base, flap_inertia=inertia / 1.25)),
                 ("Lock number", "x 0.8 (flap inertia / 0.8)", _with_rotors(base, flap_inertia=inertia / 0.8)),
                 ("control phase", "60 deg", replace(base, control_phase=math.radians(60))),
+                ("control phase", f"{math.degrees(derived):.1f} deg (derived: both sticks on their own axes)",
+                 replace(base, control_phase=derived)),
                 ("control phase", "75 deg", replace(base, control_phase=math.radians(75)))]
     rows = []
     for what, value, cfg in variants:
