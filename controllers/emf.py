@@ -17,6 +17,7 @@ L = C G S.  phi'/phi_d = 1/(1+L).  p/delta = G s CM (Pinv + e^{-tau s} C)/(1+L).
 """
 from __future__ import annotations
 
+import re
 import warnings
 
 from dataclasses import dataclass, replace
@@ -27,7 +28,7 @@ from scipy.optimize import least_squares
 
 from .plants import DelayedLTI, _check_siso
 
-__all__ = ["CommandModel", "PIDGains", "FrequencyFunction", "EMFDesign", "NegativeDelayWarning",
+__all__ = ["CommandModel", "PIDGains", "FrequencyFunction", "EMFDesign", "NegativeDelayWarning", "AXIS_SIGNALS",
            "fit_inverse_plant", "fit_equivalent_delay"]
 
 
@@ -179,13 +180,31 @@ def _fit_range(omega_range, name):
     return lo, hi
 
 
+#: the rate output and stick input a single-axis design closes its loop on
+AXIS_SIGNALS = {"roll": ("p", "delta_lat"), "pitch": ("q", "delta_lon"), "yaw": ("r", "delta_ped")}
+_UNNAMED = re.compile(r"^[uy]\[\d+\]$")    # python-control's default signal names
+
+
+def _check_axis(plant, axis):
+    """Refuse a plant whose named signals belong to another axis (unnamed ones pass)."""
+    output, stick = AXIS_SIGNALS[axis]
+    got_out, got_in = plant.system.output_labels[0], plant.system.input_labels[0]
+    for what, got, want in (("output", got_out, output), ("input", got_in, stick)):
+        if not _UNNAMED.match(got) and got != want:
+            raise ValueError(f"the plant {plant.name or ''} is {got_out}/{got_in} but a {axis}-axis design "
+                             f"needs {output}/{stick}: its {what} {got!r} belongs to another axis "
+                             f"(pass axis= for another axis, or name the plant's signals)")
+
+
 class EMFDesign:
-    """An explicit-model-following roll-axis design.
+    """An explicit-model-following single-axis design (roll by default).
 
     Parameters
     ----------
     plant : DelayedLTI or control LTI
-        Bare-airframe p/delta_lat (any order; a coupling-numerator plant works).
+        Bare-airframe rate response of the axis, p/delta_lat for roll (any order; a
+        coupling-numerator plant works). Named signals must be the axis's
+        (:data:`AXIS_SIGNALS`); python-control's default names ``u[0]``/``y[0]`` pass.
     gains : PIDGains
     command_model : CommandModel
     actuator : control LTI
@@ -197,11 +216,31 @@ class EMFDesign:
         (0th over 1st, 1-12 rad/s) if not given.
     equivalent_delay : float, optional
         tau_eq [s]; fitted with :func:`fit_equivalent_delay` if not given.
+    fit_range : (float, float)
+        Band of the inverse-plant and tau_eq fits [rad/s].
+    axis : {"roll", "pitch", "yaw"}
+        The axis designed: the plant's signal names are checked against it.
+
+    Raises
+    ------
+    ValueError
+        A plant named for another axis, a bad delay, or an invertible inverse plant missing.
+
+    Examples
+    --------
+    >>> from controllers import EMFDesign, PIDGains, hover_roll_plant
+    >>> design = EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.05))
+    >>> round(design.equivalent_delay, 3) >= 0
+    True
     """
 
     def __init__(self, plant, gains, command_model=CommandModel(), actuator=None, sensor_delay=0.01,
-                 inverse_plant=None, equivalent_delay=None, fit_range=(1.0, 12.0)):
+                 inverse_plant=None, equivalent_delay=None, fit_range=(1.0, 12.0), axis="roll"):
+        if axis not in AXIS_SIGNALS:
+            raise ValueError(f"axis must be one of {sorted(AXIS_SIGNALS)}, got {axis!r}")
+        self.axis = axis
         self.plant = _as_delayed(plant)
+        _check_axis(self.plant, axis)
         if not isinstance(gains, PIDGains):
             raise TypeError(f"gains must be PIDGains, got {type(gains).__name__}")
         self.gains = gains
@@ -256,6 +295,7 @@ class EMFDesign:
         new = object.__new__(EMFDesign)
         new.__dict__.update(self.__dict__)
         new.plant = _as_delayed(plant)
+        _check_axis(new.plant, self.axis)
         new._cache = {k: v for k, v in self._cache.items() if k[0] == "fixed"}
         return new
 

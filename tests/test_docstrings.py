@@ -63,7 +63,7 @@ KNOWN_GAPS = {
         "flightid.verification.theil_inequality")},
     **{name: _PARAM_UNDOCUMENTED for name in (
         "aircraft.inflow.identified.mltau_statespace", "aircraft.inflow.pitt_peters.momentum_inflow",
-        "aircraft.wake.trim.run_wake", "controllers.emf.EMFDesign",
+        "aircraft.wake.trim.run_wake",
         "flightid.joint.joint_input_output", "flightid.reduction.reduce",
         "flightid.response.MeasuredResponse", "flightid.response.frequency_response")},
 }

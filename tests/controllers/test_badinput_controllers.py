@@ -154,3 +154,19 @@ def test_fit_ranges_that_cannot_be_log_spaced_are_refused(band):
         fit_inverse_plant(h, band)
     with pytest.raises(ValueError, match="omega_range"):
         fit_equivalent_delay(h, band)
+
+
+def test_a_plant_named_for_another_axis_is_refused():
+    # a pitch plant used as the roll plant used to be accepted (13 of 14 specs "met")
+    from controllers import EMFDesign, PIDGains, hover_roll_plant
+    pitch = DelayedLTI(control.tf([5.0], [1.0, 2.0], inputs="delta_lon", outputs="q"), 0.01, name="pitch")
+    with pytest.raises(ValueError, match="q/delta_lon but a roll-axis design needs p/delta_lat"):
+        EMFDesign(pitch, PIDGains(0.3, 0.1, 0.05))
+    assert EMFDesign(pitch, PIDGains(0.3, 0.1, 0.05), axis="pitch").axis == "pitch"
+    roll = EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.05))
+    with pytest.raises(ValueError, match="another axis"):
+        roll.with_plant(pitch)
+    with pytest.raises(ValueError, match="axis must be one of"):
+        EMFDesign(hover_roll_plant(), PIDGains(0.3, 0.1, 0.05), axis="heave")
+    # unnamed signals (python-control's u[0]/y[0]) are accepted for any axis
+    EMFDesign(control.tf([5.0], [1.0, 2.0]), PIDGains(0.3, 0.1, 0.05), axis="yaw")

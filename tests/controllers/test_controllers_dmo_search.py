@@ -66,7 +66,7 @@ def _dc_axis(control_phase_deg, axis="roll"):
         plant = _scaled(roll_design_plant(held, output="q", input="delta_lon",
                                           constrained={"p": "delta_lat", "r": "delta_ped", "w": "delta_col"}), -1.0)
     return EMFDesign(plant, PIDGains(0.3, 0.1, 0.05), CommandModel(4.0, 0.7, 0.05),
-                     second_order_actuator(35.0, 0.7), sensor_delay=0.01)
+                     second_order_actuator(35.0, 0.7), sensor_delay=0.01, axis=axis)
 
 
 def _scaled(plant, factor):
