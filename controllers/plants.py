@@ -180,6 +180,9 @@ def roll_design_plant(sys, output="p", input="delta_lat", constrained=None, drop
         plant = residualize(plant, cutoff=residualize_above)
     if minreal_tol is not None:
         plant = control.minreal(plant, tol=minreal_tol, verbose=False)
+    # the reductions drop the signal names: the design checks them against its axis
+    plant = control.ss(plant)
+    plant = control.ss(plant.A, plant.B, plant.C, plant.D, inputs=[input], outputs=[output])
     return DelayedLTI(plant, delay, name=name or f"{output}/{input} | " + ", ".join(
         f"{o}->{i}" for o, i in constrained.items()))
 
