@@ -362,13 +362,19 @@ class IsolatedRotorCheck:
 
     def verdicts(self):
         """One row per model: largest differences and whether the assumption holds (DataFrame)."""
-        g = self.differences.groupby("model", sort=False)
-        out = g[["max_abs_magnitude_diff_db", "max_abs_phase_diff_deg"]].max().reset_index()
-        out["isolated_rotors_hold"] = [self.holds(m) for m in out.model]
-        out["trim"] = "converged"
+        columns = ["model", "max_abs_magnitude_diff_db", "max_abs_phase_diff_deg"]
+        if self.differences.empty:      # no model but the reference trimmed
+            out = pd.DataFrame(columns=columns + ["isolated_rotors_hold", "trim"])
+        else:
+            g = self.differences.groupby("model", sort=False)
+            out = g[columns[1:]].max().reset_index()
+            out["isolated_rotors_hold"] = [self.holds(m) for m in out.model]
+            out["trim"] = "converged"
         rows = [{"model": m, "isolated_rotors_hold": None, "trim": f"failed: {msg[:160]}"}
                 for m, msg in self.failed.items()]
-        return pd.concat([out, pd.DataFrame(rows)], ignore_index=True) if rows else out
+        if not rows:
+            return out
+        return pd.DataFrame(rows) if out.empty else pd.concat([out, pd.DataFrame(rows)], ignore_index=True)
 
     def to_pandas(self):
         """The long response table of every model (see ``BareAirframeComparison``)."""

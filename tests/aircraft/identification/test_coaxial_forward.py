@@ -258,3 +258,14 @@ def test_study_small_end_to_end(tmp_path):
     verdicts = pd.read_csv(out / "verdicts.csv")
     assert "Eqs. 6.12-6.13 (dissertation)" in set(verdicts.model)
     assert "J_ave" in done.stdout and "Isolated Rotors" in done.stdout
+
+
+def test_isolated_rotor_check_reports_when_no_model_trims():
+    # every model but the reference failing to trim is a verdict, not a KeyError
+    from aircraft.identification.coaxial_200kt import isolated_rotor_check
+    from aircraft.inflow import IdentifiedInflow
+    from aircraft.inflow.published import in_rotor_frames
+    chk = isolated_rotor_check({"Eqs. 6.12-6.13": IdentifiedInflow.from_published(
+        in_rotor_frames(COAXIAL_200KT_12STATE))}, omega=np.logspace(0.0, 1.0, 10))
+    v = chk.verdicts()
+    assert list(v.model) == ["Eqs. 6.12-6.13"] and v.trim.iloc[0].startswith("failed")
