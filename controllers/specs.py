@@ -146,14 +146,13 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
     and case-insensitively: ``"target acquisition and tracking"`` or
     ``"all other"`` (alias ``"all other MTEs"``); any other name raises
     :class:`ValueError` listing the valid ones.  The bandwidth boundaries come
-    from :data:`controllers.hq.bandwidth.BANDWIDTH_LIMITS`.
+    from :data:`controllers.hq.limits.BANDWIDTH_LIMITS`.
 
     ``olop_stick`` [stick units] and ``olop_rate`` [mixer units/s] set the
     open-loop-onset-point check (full-stick sinusoid against the actuator rate
     limit); the defaults are placeholders for the hand-written and coaxial plants.
     """
-    from .hq.bandwidth import BANDWIDTH_LIMITS   # one definition of the bandwidth boundaries
-    from .hq.selector import canonical_mte       # exact, case-insensitive names; unknown ones raise
+    from .hq.limits import BANDWIDTH_LIMITS, canonical_mte   # one definition; unknown MTE names raise
 
     gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
     pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]

@@ -32,6 +32,7 @@ import numpy as np
 from .. import metrics as m
 from .base import RegionSpec
 from .boundaries import LevelRegions
+from .limits import BANDWIDTH_LIMITS
 
 __all__ = ["bandwidth_chart", "bandwidth_specs", "rectangle_regions", "BANDWIDTH_LIMITS"]
 
@@ -41,11 +42,6 @@ _BW_FAR, _TAU_LOW = 100.0, -1.0
 _SCALE = (1.0, 0.1)
 _TEST = "tests/test_hq_specs.py::test_bandwidth_chart_values"
 
-#: rectangles carried over from the toolkit's earlier specs: (w_BW L1, w_BW L2, tau_p L1, tau_p L2)
-BANDWIDTH_LIMITS = {
-    ("roll", "target acquisition and tracking"): (2.5, 1.5, 0.12, 0.20),
-    ("roll", "all other"): (2.0, 1.0, 0.20, 0.30),
-}
 
 _APPROX_SOURCE = ("ADS-33E-PRF §3.3.2.1 Fig. 3.3-1 ({chart}); the chart's sloped vertices were not found "
                   "printed: rectangle L1 w_BW >= {bw1:g} rad/s, tau_p <= {tau1:g} s; L2 w_BW >= {bw2:g} rad/s, "

@@ -22,6 +22,7 @@ import numpy as np
 
 from ..specs import Spec
 from .boundaries import BoundaryNotPublishedError, LevelRegions
+from .limits import MTE_CLASSES
 
 __all__ = ["HQSpec", "RegionSpec", "STATUSES", "AXES", "SPEEDS", "MTE_CLASSES", "AGILITIES", "ATTENTIONS"]
 
@@ -32,7 +33,6 @@ AXES = ("pitch", "roll", "yaw", "heave")
 #: flight regimes
 SPEEDS = ("hover", "forward")
 #: ADS-33E-PRF MTE classes of the small/moderate-amplitude charts
-MTE_CLASSES = ("target acquisition and tracking", "all other")
 #: ADS-33E-PRF agility classes of the large-amplitude and coupling requirements
 AGILITIES = ("limited", "moderate", "aggressive")
 #: pilot attention

@@ -6,9 +6,10 @@ valid names.  No prefix matching: ``"tracking"`` is not an MTE class.
 """
 from __future__ import annotations
 
-from .base import AGILITIES, ATTENTIONS, AXES, MTE_CLASSES, SPEEDS
+from .base import AGILITIES, ATTENTIONS, AXES, SPEEDS
 from .bandwidth import bandwidth_specs
 from .boundaries import BoundaryNotPublishedError
+from .limits import MTE_ALIASES, _choice, canonical_mte
 from .coupling import coupling_specs
 from .forward_flight import forward_flight_specs
 from .generic import generic_specs
@@ -18,45 +19,7 @@ from .quickness import quickness_specs
 
 __all__ = ["specs_for", "all_specs", "canonical_mte", "MTE_ALIASES"]
 
-#: other exact spellings accepted for the MTE classes
-MTE_ALIASES = {"all other mtes": "all other", "all other mte": "all other"}
 _MISSING = ("raise", "skip", "keep")
-
-
-def _choice(argument, value, valid, aliases=None):
-    if not isinstance(value, str):
-        raise TypeError(f"{argument} must be a string, one of {list(valid)}; got {type(value).__name__}")
-    key = " ".join(value.strip().lower().split())
-    key = (aliases or {}).get(key, key)
-    if key not in valid:
-        extra = f" (also accepted: {sorted(aliases)})" if aliases else ""
-        raise ValueError(f"unknown {argument} {value!r}; valid names (case-insensitive, exact): {list(valid)}{extra}")
-    return key
-
-
-def canonical_mte(mte):
-    """The MTE class named by ``mte`` (case-insensitive exact name or alias).
-
-    Parameters
-    ----------
-    mte : str
-        ``"target acquisition and tracking"`` or ``"all other"`` (alias ``"all other MTEs"``).
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    ValueError
-        Unknown name; the message lists the valid ones.
-
-    Examples
-    --------
-    >>> canonical_mte("Target Acquisition and Tracking")
-    'target acquisition and tracking'
-    """
-    return _choice("mte", mte, MTE_CLASSES, MTE_ALIASES)
 
 
 def all_specs(limits=None, response_type="attitude"):
