@@ -46,7 +46,7 @@ import sys
 from pathlib import Path
 
 __all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "BACKEND_CODE", "ResultsManifestError", "code_version",
-           "settings_hash", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
+           "settings_hash", "jsonable", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
            "read_manifest",
            "check_results", "upgrade_manifests", "record_kernel_backend"]
 
@@ -198,27 +198,68 @@ def code_version(root=None):
     return {"package": package, "git": described, "dirty": dirty}
 
 
-def settings_hash(settings):
+def settings_hash(settings, digits=64):
     """SHA-256 of the canonical JSON form of ``settings``.
+
+    The one hash of settings in the project: results manifests keep all 64 digits,
+    model files the first 16.
 
     Parameters
     ----------
     settings : dict
-        JSON-serialisable settings (keys are sorted before hashing, so order does
-        not matter).
+        JSON-able settings; numpy arrays and scalars are converted to lists and
+        numbers, non-finite floats to ``null``. Keys are sorted before hashing, so
+        order does not matter.
+    digits : int
+        Number of leading hexadecimal digits returned (1-64).
 
     Returns
     -------
     str
-        64 hexadecimal characters.
+        ``digits`` hexadecimal characters.
 
     Raises
     ------
     TypeError
-        If ``settings`` is not JSON-serialisable.
+        If ``settings`` holds something that is not JSON-able.
+    ValueError
+        If ``digits`` is not an integer in 1-64.
+
+    Examples
+    --------
+    >>> settings_hash({"b": 1, "a": [0.5, 2]}, digits=16) == settings_hash({"a": [0.5, 2], "b": 1}, digits=16)
+    True
     """
-    text = json.dumps(settings, sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()
+    if isinstance(digits, bool) or not isinstance(digits, int) or not 1 <= digits <= 64:
+        raise ValueError(f"digits must be an integer in 1-64, got {digits!r}")
+    text = json.dumps(jsonable(settings), sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()[:digits]
+
+
+def jsonable(x):
+    """``x`` as plain JSON data: arrays and numpy scalars to lists and numbers, tables to
+    lists of records, non-finite floats to None.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> jsonable({"a": np.array([1.0, np.nan])})
+    {'a': [1.0, None]}
+    """
+    import math
+    if isinstance(x, dict):
+        return {str(k): jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [jsonable(v) for v in x]
+    if hasattr(x, "to_dict") and hasattr(x, "columns"):        # a pandas DataFrame
+        return jsonable(x.to_dict(orient="records"))
+    if hasattr(x, "tolist") and not isinstance(x, (str, bytes)):  # numpy array or scalar
+        return jsonable(x.tolist())
+    if isinstance(x, bool) or x is None or isinstance(x, (str, int)):
+        return x
+    if isinstance(x, float):
+        return x if math.isfinite(x) else None
+    return x
 
 
 def _module_file(name, root):

@@ -25,9 +25,10 @@ import time
 
 from aircraft import identify_inflow
 from aircraft.configs import coaxial_compound
-from aircraft.identification import Coaxial6State, IdentificationSettings, get_structure
+from aircraft.identification.structures import Coaxial6State
+from aircraft.identification import IdentificationSettings, get_structure
 from aircraft.identification.pipeline import _trim_request
-from aircraft.identification.regenerate import RECIPES
+from aircraft.identification.shipped import RECIPES
 from aircraft.wake import FlightCondition, SweepSpec, run_sweeps
 
 CT = 0.0053 + 0.0043            # system C_T (the dissertation's split), shared equally

@@ -16,8 +16,8 @@ import time
 
 import numpy as np
 
-from aircraft.identification import Coaxial6State
-from aircraft.identification.synthetic import SWASHPLATE_CONTROLS, coaxial_sweep_set
+from aircraft.identification.structures import Coaxial6State
+from aircraft.identification.testing import SWASHPLATE_CONTROLS, coaxial_sweep_set
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 from flightid import combine_responses, fit, frequency_response, joint_input_output
 
@@ -62,8 +62,8 @@ def flight_test_methods():
     import control
     import pandas as pd
     from scipy.signal import lsim
-    from flightid import (StateSpaceStructure, concatenated_response, fit_transfer_function, frequency_sweep,
-                          identify, loes_fit, read_flight_data, reduce)
+    from flightid import (StateSpaceStructure, concatenated_response, fit_transfer_function, frequency_sweep, identify, read_flight_data, reduce)
+    from flightid.transfer_function import loes_fit
     from flightid.transfer_function import TransferFunctionStructure
     print("flight-test methods (wall time of one call):")
     rng = np.random.default_rng(0)

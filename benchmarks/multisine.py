@@ -304,12 +304,10 @@ def synthetic(duration_sweep=100.0, duration_multisine=200.0, noise=0.02, seed=0
     """The same comparison on the synthetic truth (the published Eq. 5.3 model, simulated with
     scipy through a fully populated mixing and a 0.05 s loads lag; seconds of CPU, no wake)."""
     import scipy.signal as sig
-    from aircraft.identification import Coaxial6State
-    from aircraft.identification.synthetic import (SWASHPLATE_CONTROLS, coaxial_sweep_set, mixing_matrix,
-                                                   simulate_mltau)
+    from aircraft.identification.structures import Coaxial6State
+    from aircraft.identification.testing import (SWASHPLATE_CONTROLS, coaxial_sweep_set, mixing_matrix, simulate_mltau)
     from aircraft.inflow.published import COAXIAL_HOVER_6STATE
-    from flightid import (combine_responses, fit, frequency_response, joint_input_output, mimo_response,
-                          orthogonal_multisine)
+    from flightid import (combine_responses, fit, frequency_response, joint_input_output, mimo_response, orthogonal_multisine)
     model = COAXIAL_HOVER_6STATE
     names_c, names_l = model.input_names, model.output_names
     dt, w_min, w_max = 0.01, 0.4, 40.0

@@ -11,8 +11,7 @@ import numpy as np
 import pandas as pd
 from scipy.signal import lsim
 
-from flightid import (StateSpaceStructure, concatenated_response, fit, fit_transfer_function,
-                      frequency_sweep, identify, read_flight_data, verify)
+from flightid import (StateSpaceStructure, concatenated_response, fit, fit_transfer_function, frequency_sweep, identify, read_flight_data, verify)
 
 # --- the aircraft we pretend to fly: short period with a 40 ms delay ----------------
 ZA, MA, MQ, ZDE, MDE, TAU = -1.2, -6.0, -2.5, -0.15, -9.0, 0.04

@@ -28,42 +28,26 @@ a flight-test record or a wind-tunnel record.
               ▼
     FitResult.model  ─►  control.StateSpace (Padé delays)  ─►  verify (TIC, RMS)
 """
-from .errors import (DataError, IdentificationError, InputValueError, SignalNameError,
-                     SingularInputError, UnstableModelError)
-from .sweeps import doublet, frequency_sweep, multistep_3211, shaped_noise
-from .response import MeasuredResponse, combine_responses, frequency_response
-from .joint import joint_input_output
-from .multisine import Multisine, orthogonal_multisine, relative_peak_factor
-from .mimo import MIMOResponse, harmonic_response, mimo_response
-from .structures import FGCStructure, GainDelayStructure, MLTauStructure, ModelStructure
-from .fitting import COHERENCE_FLOOR, FitResult, cifer_cost, coherence_weight, fit
-from .degeneracy import DegeneracyReport, MultiStartReport, NoInformationError
-from .reduction import ReductionResult, reduce
-from .staging import Stage, StagedFitResult, fit_staged
-from .verification import VerificationResult, theil_inequality, verify
-from .feedthrough import MLTauFeedthroughStructure
-from .flight_data import concatenated_response, read_flight_data
-from .transfer_function import TransferFunctionStructure, fit_transfer_function, loes_fit
-from .state_space import StateSpaceStructure
-from .fourier import identify
-from .transformed import TransformedStructure, pair_costs, sum_difference_transform, transform_response
 
-__all__ = [
-    "DataError", "IdentificationError", "InputValueError", "SignalNameError",
-    "SingularInputError", "UnstableModelError",
-    "doublet", "frequency_sweep", "multistep_3211", "shaped_noise",
-    "MeasuredResponse", "combine_responses", "frequency_response",
-    "joint_input_output",
-    "Multisine", "orthogonal_multisine", "relative_peak_factor",
-    "MIMOResponse", "harmonic_response", "mimo_response",
-    "FGCStructure", "GainDelayStructure", "MLTauStructure", "ModelStructure",
-    "COHERENCE_FLOOR", "FitResult", "cifer_cost", "coherence_weight", "fit",
-    "DegeneracyReport", "MultiStartReport", "NoInformationError",
-    "ReductionResult", "reduce",
-    "Stage", "StagedFitResult", "fit_staged",
-    "VerificationResult", "theil_inequality", "verify",
-    "MLTauFeedthroughStructure", "TransformedStructure", "pair_costs", "sum_difference_transform",
-    "transform_response",
-    "concatenated_response", "read_flight_data",
-    "TransferFunctionStructure", "fit_transfer_function", "loes_fit", "StateSpaceStructure", "identify",
-]
+from .errors import IdentificationError, DataError
+from .sweeps import frequency_sweep, doublet, multistep_3211
+from .multisine import orthogonal_multisine
+from .flight_data import read_flight_data, concatenated_response
+from .response import frequency_response, MeasuredResponse, combine_responses
+from .joint import joint_input_output
+from .mimo import mimo_response
+from .structures import ModelStructure, MLTauStructure, FGCStructure, GainDelayStructure
+from .transfer_function import TransferFunctionStructure, fit_transfer_function
+from .state_space import StateSpaceStructure
+from .fitting import fit, FitResult, cifer_cost
+from .fourier import identify
+from .reduction import reduce
+from .verification import verify
+from .staging import fit_staged
+
+__all__ = ["IdentificationError", "DataError", "frequency_sweep", "doublet", "multistep_3211",
+           "orthogonal_multisine", "read_flight_data", "concatenated_response", "frequency_response",
+           "MeasuredResponse", "combine_responses", "joint_input_output", "mimo_response", "ModelStructure",
+           "MLTauStructure", "FGCStructure", "GainDelayStructure", "TransferFunctionStructure",
+           "StateSpaceStructure", "fit", "FitResult", "fit_transfer_function", "identify", "reduce", "verify",
+           "fit_staged", "cifer_cost"]

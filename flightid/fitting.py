@@ -24,6 +24,7 @@ from .degeneracy import (DegeneracyReport, MultiStartReport, NoInformationError,
                          hessian_report, multistart_report, square_components)
 from .errors import IdentificationError, InputValueError, UnstableModelError
 from .response import MeasuredResponse
+from .statistics import parameter_statistics, residual_scaled_errors
 from .structures import ModelStructure
 
 __all__ = ["fit", "FitResult", "cifer_cost", "coherence_weight", "COHERENCE_FLOOR"]
@@ -146,8 +147,15 @@ class FitResult:
         :attr:`parameters`), standard_error (absolute) and standard_error_pct.
         See :func:`flightid.statistics.parameter_statistics` for the convention.
         """
-        from .statistics import parameter_statistics
         return parameter_statistics(self)
+
+    def residual_scaled_errors(self) -> np.ndarray:
+        """Standard errors of the free parameters scaled by the fit's residual variance,
+        in the order of ``structure.free_names`` (:func:`flightid.statistics.residual_scaled_errors`)."""
+        problem = _Problem(self.structure, self.pairs, 0.0)
+        x = np.array([self.structure.values[n] for n in self.structure.free_names])
+        fn = lambda v: problem.residuals(v, with_penalty=False)     # noqa: E731
+        return residual_scaled_errors(_jacobian(fn, x), fn(x))
 
     @property
     def condition_number(self) -> float:

@@ -192,7 +192,7 @@ def orthogonal_multisine(n_inputs, duration, dt, w_min, w_max, amplitude=1.0, *,
         log-spaced fit weights as much as the high ones).
     n_periods : int
         Whole periods in the record (two or more allow coherence estimates of
-        :func:`flightid.harmonic_response`).
+        :func:`flightid.mimo.harmonic_response`).
     fade : float
         Half-cosine fade-in and fade-out [s] at the ends of the record (0: none),
         so a system at trim is not hit with a step; it breaks exact periodicity.

@@ -177,7 +177,7 @@ def fit_staged(structure, responses, stages, *, progress=False, **fit_kwargs) ->
     """
     stages = list(stages)
     if not stages or not all(isinstance(s, Stage) for s in stages):
-        raise IdentificationError("stages must be a non-empty sequence of flightid.Stage")
+        raise IdentificationError("stages must be a non-empty sequence of flightid.staging.Stage")
     current = structure.copy()
     used, pairs, results, log = set(), None, [], []
     for k, stage in enumerate(tqdm(stages, desc="staged fit", disable=not progress)):

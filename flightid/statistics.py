@@ -82,16 +82,13 @@ def parameter_statistics(result) -> pd.DataFrame:
     >>> list(stats.columns)[-2:]
     ['standard_error', 'standard_error_pct']
     """
-    from .fitting import _Problem, _jacobian
     table = result.parameters.copy()
     free = result.structure.free_names
     if result.standard_errors is not None:
         se = np.array([result.standard_errors[n] for n in free])
     else:
-        problem = _Problem(result.structure, result.pairs, 0.0)
-        x = np.array([result.structure.values[n] for n in free])
-        fn = lambda v: problem.residuals(v, with_penalty=False)     # noqa: E731
-        se = residual_scaled_errors(_jacobian(fn, x), fn(x))
+        # the fit knows its residuals and their Jacobian: it scales them with residual_scaled_errors
+        se = result.residual_scaled_errors()
     table["standard_error"] = np.nan
     table["standard_error_pct"] = np.nan
     for n, e in zip(free, se):

@@ -7,6 +7,7 @@
     rotorwake <study> [options]            one study; ``rotorwake <study> --help`` for its options
     rotorwake results                      regenerate every committed results folder
     rotorwake check-results                say which committed results are stale
+    rotorwake shipped-models [names]       list, check or regenerate the shipped model files
 
 Each study command calls that study's own ``main`` with the remaining options, so
 the studies keep their own option parsers; the heavy imports (numba, CasADi,
@@ -185,7 +186,40 @@ def _parser():
                      help="first record, in manifests that do not say, which Biot-Savart backend their runs "
                           "used (an attestation by whoever knows where they ran; see "
                           "aircraft.provenance.record_kernel_backend)")
+    shp = sub.add_parser("shipped-models", help="list, check (--check) or regenerate the identified models "
+                                                 "shipped in aircraft/data/models",
+                         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    shp.add_argument("names", nargs="*", help="models to regenerate (names of their recipes)")
+    shp.add_argument("--list", action="store_true", help="list recipes and shipped files")
+    shp.add_argument("--published", action="store_true", help="(re)write the printed models' files")
+    shp.add_argument("--check", action="store_true", help="report shipped files that no longer match their recipe")
+    shp.add_argument("--jobs", type=int, default=2, help="wake worker processes")
+    shp.add_argument("--cache", default="default",
+                     help="wake run cache folder (default: $ROTORWAKE_CACHE_DIR, else .cache/wake)")
     return parser
+
+
+def _shipped_models(args):
+    """``rotorwake shipped-models``: list, check or regenerate the shipped model files."""
+    from aircraft.identification import shipped
+    from aircraft.inflow.model_files import shipped_model_path, shipped_models
+    if args.list:
+        print("recipes:", ", ".join(sorted(shipped.RECIPES)))
+        print("published:", ", ".join(sorted(shipped.PUBLISHED_FILES)))
+        print("shipped:", ", ".join(shipped_models()))
+    status = 0
+    if args.check:
+        stale = shipped.stale_models()
+        print("stale:" if stale else "all shipped models match their recipes",
+              *(f"{k} (file {a}, recipe {b})" for k, (a, b) in stale.items()))
+        status = 1 if stale else 0
+    names = list(args.names) + (sorted(shipped.PUBLISHED_FILES) if args.published else [])
+    for name in names:
+        out = shipped.regenerate(name, n_jobs=args.jobs, cache_dir=args.cache)
+        if hasattr(out, "summary"):
+            print(out.summary())
+        print(f"wrote {shipped_model_path(name)}")
+    return status
 
 
 def _option(argv, name, default):
@@ -353,6 +387,8 @@ def main(argv=None):
         return 0
     if rest:
         _parser().error(f"unrecognised arguments: {' '.join(rest)}")
+    if args.command == "shipped-models":
+        return _shipped_models(args)
     if args.command == "check-results":
         if args.upgrade:
             from aircraft.provenance import upgrade_manifests

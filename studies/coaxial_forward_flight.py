@@ -1,6 +1,6 @@
 """The coaxial at 200 kt: Eq. 6.5 inflow model from our free wake, and the isolated-rotor check.
 
-Thin study over :mod:`aircraft.identification.coaxial_200kt`:
+Thin study over :mod:`aircraft.identification.coaxial_forward_flight`:
 
 1. :func:`identify_coaxial_forward`: the coaxial of ``coaxial_compound(cruise=True)``
    at 200 kt (mu = 0.54, rotor AoA 2 deg), the wake trimmed to the thrust the
@@ -35,10 +35,10 @@ from pathlib import Path
 import pandas as pd
 
 from aircraft.configs import coaxial_compound
-from aircraft.identification import CoaxialForward12State, IdentificationSettings
-from aircraft.identification.coaxial_200kt import (aircraft_lift_offset, aircraft_thrust_at,
-                                                   cost_table_beside_dissertation, identify_coaxial_forward,
-                                                   isolated_rotor_check)
+from aircraft.identification.structures import CoaxialForward12State
+from aircraft.identification import IdentificationSettings
+from aircraft.identification.coaxial_forward_flight import (aircraft_lift_offset, aircraft_thrust_at, identify_coaxial_forward)
+from studies.analysis.coaxial_200kt import cost_table_beside_dissertation, isolated_rotor_check
 from aircraft.inflow import IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_200KT_12STATE, in_rotor_frames
 from aircraft.wake import WakeSettings

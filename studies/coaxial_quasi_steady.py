@@ -31,7 +31,7 @@ import pandas as pd
 
 from aircraft.configs import coaxial_compound
 from aircraft.identification import IdentificationSettings, quasi_steady_check
-from aircraft.identification.regenerate import RECIPES
+from aircraft.identification.shipped import RECIPES
 from aircraft.inflow import IdentifiedInflow
 from aircraft.wake import WakeSettings
 

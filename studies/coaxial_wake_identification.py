@@ -21,7 +21,7 @@ Run: ``python -m studies.coaxial_wake_identification`` (default wake resolution;
 about 30 minutes of wake runs on 2 cores the first time, then about 10 minutes of
 fitting). The shipped files ``aircraft/data/models/coaxial_hover_6state.json`` and
 ``coaxial_hover_12state.json`` are written by
-``python -m aircraft.identification.regenerate coaxial_hover_6state coaxial_hover_12state``.
+``rotorwake shipped-models coaxial_hover_6state coaxial_hover_12state``.
 """
 from __future__ import annotations
 
@@ -34,7 +34,8 @@ import pandas as pd
 
 from aircraft import identify_inflow
 from aircraft.configs import coaxial_compound
-from aircraft.identification import Coaxial6State, Coaxial12State, IdentificationSettings
+from aircraft.identification.structures import Coaxial6State, Coaxial12State
+from aircraft.identification import IdentificationSettings
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, COAXIAL_HOVER_12STATE
 from aircraft.wake import WakeSettings
 
@@ -133,7 +134,7 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
     (``twelve``) the 12-state models, write tables and figures; return ``(model6, model12)``
     (``model12`` None without ``twelve``). ``diagnostics``: also fit the 6-state's data in
     sum/difference coordinates and with a feedthrough
-    (:func:`aircraft.identification.six_state_diagnostics.six_state_diagnostics`, ~2 min)."""
+    (:func:`studies.analysis.six_state_diagnostics.six_state_diagnostics`, ~2 min)."""
     import matplotlib.pyplot as plt
     t0 = time.perf_counter()
     if model is None:
@@ -150,7 +151,7 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
     plt.close("all")
     diag = None
     if diagnostics:
-        from aircraft.identification.six_state_diagnostics import six_state_diagnostics
+        from studies.analysis.six_state_diagnostics import six_state_diagnostics
         s = model.settings
         diag, diag_pairs = six_state_diagnostics(model.responses, model.omega, fit_range=tuple(s.fit_range),
                                                  n_omega=s.n_omega, coherence_min=s.coherence_min)

@@ -1,6 +1,6 @@
 """Single rotor in forward flight (mu = 0.1, 0.2; §4.4) and wake distortion K_R(omega) in hover (§4.7).
 
-Through the library (:mod:`aircraft.identification.forward`,
+Through the library (:mod:`aircraft.identification.forward_flight`,
 :mod:`aircraft.identification.wake_distortion`):
 
 1. per advance ratio, :func:`identify_forward_flight` (wind-tunnel wake trim at
@@ -32,8 +32,8 @@ import numpy as np
 import pandas as pd
 
 from aircraft.configs import uh60_single_rotor
-from aircraft.identification import (IdentificationSettings, forward_bode_overlay, forward_comparison_table,
-                                     identify_forward_flight, identify_wake_distortion)
+from aircraft.identification import IdentificationSettings, identify_forward_flight, identify_wake_distortion
+from studies.analysis.forward_flight import forward_bode_overlay, forward_comparison_table
 from aircraft.wake import WakeSettings
 
 #: Printed costs of the fits (figure captions of §4.4; reference data). Fig. 4.20's caption

@@ -15,7 +15,7 @@ sensor in every case:
 The wake-identified inflow of cases B and C is, by default, **our 12-state
 near/far-wake model with flap-rate inputs** (Eqs. 6.2-6.3 structure, as the
 dissertation's §7.5 flew) **and tip-path-plane tilt inputs**
-(:mod:`aircraft.identification.tilt_inputs`: our coaxial wake's inflow answers a held
+(:mod:`aircraft.identification.structures.tilt`: our coaxial wake's inflow answers a held
 tilt), identified from our own free-vortex wake, shipped as
 ``aircraft/data/models/coaxial_hover_12state_tilt.json`` and flown by
 :class:`aircraft.helicopter.tilt_coupling.TiltCoupledHelicopter` (the tilts are the
@@ -73,7 +73,7 @@ from aircraft.helicopter import (HelicopterSettings, effective_derivative, flap_
                                  linearize, modes, trim)
 from aircraft.helicopter.hold import hold_states
 from aircraft.helicopter.tilt_coupling import helicopter_for
-from aircraft.identification.tilt_inputs import tilt_inflow_from_record
+from aircraft.identification.structures.tilt import tilt_inflow_from_record
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
 from controllers import (CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo,
@@ -280,7 +280,7 @@ def main(argv=None):
         cost = run_demo(seed=args.seed, out_dir=f"{args.out}/identification_demo")
         print(f"[stage 1] done: J_ave = {cost.J.mean():.2f} over {len(cost)} responses\n")
     if args.regenerate:
-        from aircraft.identification import regenerate
+        from aircraft.identification.shipped import regenerate
         for name in ("coaxial_hover_6state", "coaxial_hover_6state_axisymmetric", "coaxial_hover_12state",
                      "coaxial_hover_12state_tilt"):
             print(f"[regenerate] {name} from the free wake")
@@ -294,7 +294,8 @@ def main(argv=None):
     # (with ours) our 6-state model and the printed Eq. 5.3 model as further rows
     published6 = IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE))
     if args.identified == "ours":
-        from aircraft.identification import load_record
+        from aircraft.inflow.model_files import load_record
+        from aircraft.identification import trust_check
         inflows = {"ID": tilt_inflow_from_record("coaxial_hover_12state_tilt"),
                    "ID12R": IdentifiedInflow.from_file("coaxial_hover_12state"),
                    "ID6": IdentifiedInflow.from_file("coaxial_hover_6state"),
@@ -305,8 +306,7 @@ def main(argv=None):
                           ("ID6", "coaxial_hover_6state"),
                           ("IDA", "coaxial_hover_6state_axisymmetric")):
             rec = load_record(name)
-            trusted = rec.parameters[rec.parameters.status == "free"]
-            trusted = bool((trusted.cramer_rao_pct < 20).all() and (trusted.insensitivity_pct < 10).all())
+            trusted = trust_check(rec).passes
             print(f"  {key}: shipped {name} (J_ave {rec.cost_table.J.mean():.1f}, "
                   f"{'trusted' if trusted else 'NOT trusted: see its CR/insensitivity'})")
     else:

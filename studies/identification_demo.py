@@ -19,9 +19,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from aircraft.identification import Coaxial6State
-from aircraft.identification.synthetic import SWASHPLATE_CONTROLS as CONTROLS
-from aircraft.identification.synthetic import coaxial_sweep_set, simulate_mltau
+from aircraft.identification.structures import Coaxial6State
+from aircraft.identification.testing import SWASHPLATE_CONTROLS as CONTROLS
+from aircraft.identification.testing import coaxial_sweep_set, simulate_mltau
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 from flightid import combine_responses, doublet, frequency_response, joint_input_output, reduce, verify
 

@@ -31,9 +31,9 @@ import numpy as np
 import pandas as pd
 
 from aircraft.configs import uh60_single_rotor
-from aircraft.identification import (OffRotorSettings, flight_condition, horizontal_tail, identify_off_rotor,
-                                     wake_exposure, wing_under_hub)
-from aircraft.identification.off_rotor import PUBLISHED_HOVER
+from aircraft.identification import OffRotorSettings, flight_condition, identify_off_rotor
+from aircraft.identification.off_rotor import horizontal_tail, wake_exposure, wing_under_hub
+from aircraft.identification.off_rotor.surfaces import PUBLISHED_HOVER
 from aircraft.inflow.pitt_peters import momentum_inflow
 from aircraft.wake import WakeSettings
 

@@ -2,12 +2,12 @@
 
 Identifies the shipped ``coaxial_hover_6state`` recipe (its six swashplate sweeps,
 cached) to get the joint input-output lambda/C, then fits every member of
-:data:`aircraft.identification.six_state_scan.SIX_STATE_FAMILY` (fit band 1, 1.5
+:data:`studies.analysis.six_state_scan.SIX_STATE_FAMILY` (fit band 1, 1.5
 or 2 to 25 rad/s; apparent masses free, the collective diagonal or the whole
 diagonal held at Pitt-Peters'; no feedthrough or a cross-rotor feedthrough) from
 several starts, reduces the best with the guideline thresholds, and says which
 member meets the trust target (every bound < 20 %, insensitivity < 10 %, no flat
-direction, J_ave <= 100) (:func:`aircraft.identification.six_state_scan.six_state_scan`).
+direction, J_ave <= 100) (:func:`studies.analysis.six_state_scan.six_state_scan`).
 
 Writes ``results/six_state_scan/``: ``table.csv`` (one row per candidate),
 ``pair_costs.csv`` (each candidate's 12 rotor-pair costs over 1-25 rad/s),
@@ -24,8 +24,8 @@ import argparse
 from pathlib import Path
 
 from aircraft import identify_inflow
-from aircraft.identification.regenerate import RECIPES
-from aircraft.identification.six_state_scan import plot_cyclic_pairs, six_state_scan
+from aircraft.identification.shipped import RECIPES
+from studies.analysis.six_state_scan import plot_cyclic_pairs, six_state_scan
 
 
 def run(out_dir="results/six_state_scan", n_jobs=2):

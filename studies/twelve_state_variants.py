@@ -1,14 +1,14 @@
 """Constrained 12-state coaxial hover models on one wake data set: what each constraint buys.
 
-Identifies :data:`aircraft.identification.twelve_state_variants.VARIANTS` (the shipped
+Identifies :data:`studies.analysis.twelve_state_variants.VARIANTS` (the shipped
 12-state structure, then the collective made first order, then its near-wake gain held
 at Pitt-Peters', then the far-far cyclic coupling that forms a flat direction removed)
-and last :class:`~aircraft.identification.tilt_inputs.Coaxial12StateTilt` (tip-path-plane
+and last :class:`~aircraft.identification.structures.tilt.Coaxial12StateTilt` (tip-path-plane
 tilt inputs; the shipped ``coaxial_hover_12state_tilt`` structure)
 from the shipped ``coaxial_hover_12state`` recipe's wake runs (six swashplate and four
 tip-path-plane sweeps, cached), and tabulates the trust guidelines per variant beside
 the effective roll damping of the hover aircraft flying it
-(:func:`aircraft.identification.twelve_state_variants.compare_twelve_state_variants`).
+(:func:`studies.analysis.twelve_state_variants.compare_twelve_state_variants`).
 
 The printed Eq. 6.8-6.9 model (our frames) is flown beside them as a reference row.
 Then the wake's own steady gains (:func:`aircraft.identification.steady_gains.wake_steady_gains`:
@@ -17,7 +17,7 @@ each model is driven by those records' loads and flap rates.
 Writes ``results/twelve_state_variants/``: ``table.csv``, ``parameters.csv`` (every
 variant's parameters, CR and insensitivity), ``cost_tables.csv``, ``variants.png``,
 ``guideline.csv`` (each variant's parameters outside the bounds, kept or not by the
-guideline's keep rule, with the reason: :func:`aircraft.identification.guideline.guideline_check`);
+guideline's keep rule, with the reason: :func:`aircraft.identification.trust.trust_check`);
 ``steady_gains.csv`` (the wake's G_C, G_R, G_T, long), ``steady_observations.csv`` (each
 record window's changes), ``steady_compare.csv`` (per model, record window and on-axis
 output: wake and model change), ``steady_gains.png``.
@@ -34,13 +34,13 @@ from pathlib import Path
 
 import pandas as pd
 
-from aircraft.identification.guideline import guideline_check
 from aircraft.identification.steady_gains import wake_steady_gains
-from aircraft.identification.tilt_inputs import Coaxial12StateTilt
-from aircraft.identification.twelve_state_variants import VARIANTS, compare_twelve_state_variants
+from aircraft.identification.structures.tilt import Coaxial12StateTilt
+from aircraft.identification.structures.constrained import VARIANTS
+from studies.analysis.twelve_state_variants import compare_twelve_state_variants
 
 REFERENCE = "Eq. 6.8-6.9 printed, our frames (reference: flown only)"
-#: the last row: tip-path-plane tilt inputs (aircraft.identification.tilt_inputs)
+#: the last row: tip-path-plane tilt inputs (aircraft.identification.structures.tilt)
 TILT = "tilt inputs, flap rates into the near wake only, no f1_7 (coaxial_hover_12state_tilt)"
 
 
@@ -63,11 +63,9 @@ def run(out_dir="results/twelve_state_variants", n_jobs=2):
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
     guideline = []
     for k, m in result.models.items():
-        fails = m.trust_failures()
-        print(f"{k}: {'trusted' if not fails else 'NOT trusted: ' + ' | '.join(fails)}")
-        check = guideline_check(m)
+        check = m.trust           # the guideline with its keep rule (aircraft.identification.trust)
         guideline.append(check.table.assign(variant=k, model_passes=check.passes))
-        print(f"  with the guideline's keep rule: {'meets it' if check.passes else 'fails: ' + ' | '.join(check.failures)}"
+        print(f"{k}: {'trusted' if check.passes else 'NOT trusted: ' + ' | '.join(check.failures)}"
               + "".join(f"\n    {r.parameter}: {r.reason}" for r in check.table.itertuples() if r.verdict == "kept"))
     pd.concat(guideline, ignore_index=True).to_csv(out / "guideline.csv", index=False)
     steady_gains(result, out, n_jobs=n_jobs)
@@ -78,7 +76,7 @@ def run(out_dir="results/twelve_state_variants", n_jobs=2):
 def steady_gains(result, out, n_jobs=2):
     """The wake's steady gains on the variants' recipe, and each model against its records."""
     from aircraft.configs import coaxial_compound
-    from aircraft.identification.regenerate import RECIPES
+    from aircraft.identification.shipped import RECIPES
     from aircraft.inflow import IdentifiedInflow
     recipe = RECIPES["coaxial_hover_12state"]
     gains = wake_steady_gains(coaxial_compound(), recipe.ct, settings=recipe.settings, n_jobs=n_jobs, progress=True)

@@ -23,7 +23,8 @@ import pandas as pd
 
 from aircraft import identify_inflow
 from aircraft.configs import uh60_single_rotor
-from aircraft.identification import IdentificationSettings, SingleRotor3State
+from aircraft.identification import IdentificationSettings
+from aircraft.identification.structures import SingleRotor3State
 from aircraft.inflow.published import UH60_HOVER_MFW, UH60_HOVER_PITT_PETERS
 from aircraft.wake import WakeSettings
 

@@ -25,8 +25,8 @@ from pathlib import Path
 import pandas as pd
 
 from aircraft.configs import coaxial_compound
-from aircraft.identification import Coaxial6State
-from aircraft.identification.regenerate import RECIPES
+from aircraft.identification.structures import Coaxial6State
+from aircraft.identification.shipped import RECIPES
 from aircraft.identification.wake_sensitivity import wake_setting_sensitivity
 from aircraft.wake import WakeSettings
 

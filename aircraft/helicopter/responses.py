@@ -193,7 +193,7 @@ def compare_bare_airframe(inflows, config=None, condition=None, omega=None,
     -------
     BareAirframeComparison
     """
-    from .. import coaxial_compound
+    from ..configs import coaxial_compound
     if not inflows:
         raise ValueError("inflows is empty: give at least one name -> inflow model")
     config = config or coaxial_compound()

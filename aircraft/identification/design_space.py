@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from .pipeline import IdentificationSettings, PipelineError, identify_inflow
-from .structures import Coaxial6State
+from .structures.hover import Coaxial6State
 
 __all__ = ["DesignSpaceError", "DesignPoint", "DesignSpaceResult", "KEY_PARAMETERS", "SPACINGS", "THRUSTS",
            "spaced_config", "identify_design_space"]

@@ -24,9 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError,
-                       _code_version, _fit_and_verify, _trim_request, identification_hash)
-from .store import SCHEMA
+from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError, _code_version, _fit_and_verify, _trim_request, identification_hash)
+from aircraft.inflow.model_files import SCHEMA
 from .structures import get_structure
 
 __all__ = ["MultisineSettings", "identify_inflow_multisine", "record_revolutions"]
@@ -131,7 +130,8 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     """
     from tqdm.auto import tqdm
     from aircraft.wake import FlightCondition, MultisineSpec, SweepSpec, run_sweeps
-    from flightid import SingularInputError, joint_input_output, mimo_response
+    from flightid.errors import SingularInputError
+    from flightid import joint_input_output, mimo_response
 
     t_start = time.perf_counter()
     settings = settings or IdentificationSettings()
@@ -151,8 +151,8 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     trim_req = _trim_request(config, ct, trim)
     digest, payload = identification_hash(config, condition, structure, settings, trim=trim_req)
     payload = {**payload, "excitation": {"kind": "orthogonal_multisine", **multisine.__dict__}}
-    from .store import settings_hash
-    digest = settings_hash(payload)
+    from aircraft.provenance import settings_hash
+    digest = settings_hash(payload, digits=16)
     s = settings
     ms_spec = MultisineSpec(tuple(controls), amplitude=multisine.amplitude, duration=multisine.duration,
                             w_min=s.w_min, w_max=s.w_max, spectrum=multisine.spectrum, fade=multisine.fade,

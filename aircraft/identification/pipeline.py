@@ -13,7 +13,7 @@
 The result, :class:`IdentifiedModel`, carries the cost table, the parameters
 with Cramér-Rao and insensitivity percentages, the verification, the settings
 with their hash and the provenance; ``.to_inflow()`` puts it into the aircraft,
-``.save(path)`` writes the versioned file of :mod:`aircraft.identification.store`.
+``.save(path)`` writes the versioned file of :mod:`aircraft.inflow.model_files`.
 """
 from __future__ import annotations
 
@@ -24,11 +24,15 @@ from dataclasses import asdict, dataclass, field, fields, is_dataclass
 import numpy as np
 import pandas as pd
 
-from .store import SCHEMA, ModelRecord, settings_hash
-from .structures import InflowStructure, get_structure
+from aircraft.inflow.model_files import SCHEMA, ModelRecord
+from aircraft.provenance import settings_hash
+from .excitation import ExcitationSettings
+from .trust import trust_check
+from .structures.base import InflowStructure
+from .structures import get_structure
 
 __all__ = ["IdentificationSettings", "IdentifiedModel", "PipelineError", "identify_inflow",
-           "identification_hash", "PIPELINE_VERSION", "TRUST_J_AVE_MAX"]
+           "identification_hash", "PIPELINE_VERSION"]
 
 #: Version of the pipeline's numerical recipe; part of every settings hash. Bump it
 #: when a change would alter an identified model (start, fit, reduction, signals).
@@ -36,9 +40,6 @@ PIPELINE_VERSION = "pipeline-4"   # 2: apparent-mass diagonals protected in the 
 #                                    3: the data-driven start uses the lowest *coherent* points;
 #                                    4: structures may add starts (6-state: equation-error M)
 
-#: The CIFER guideline on the average cost of a trusted model (Tischler & Remple:
-#: J_ave <= 100 is acceptable; the dissertation's own fits went above it, 171 for Eq. 5.3).
-TRUST_J_AVE_MAX = 100.0
 
 
 class PipelineError(RuntimeError):
@@ -46,78 +47,43 @@ class PipelineError(RuntimeError):
 
 
 @dataclass(frozen=True)
-class IdentificationSettings:
+class IdentificationSettings(ExcitationSettings):
     """Settings of :func:`identify_inflow` (SI units, radians).
+
+    The wake records and the fit band are those of :class:`ExcitationSettings`
+    (``wake, sweep_s, amplitude, w_min, w_max, fit_range, doublet_amplitude, doublet_s,
+    pulse_width, noise_floor_s, n_omega, coherence_min, pade_order``); added here:
 
     Parameters
     ----------
-    wake : WakeSettings, optional
-        Free-wake resolution (default: :class:`aircraft.wake.WakeSettings` defaults).
-    sweep_s : float
-        Length of each frequency sweep [s].
-    amplitude : float
-        Sweep amplitude [rad].
-    w_min, w_max : float
-        Sweep band and response band [rad/s].
-    fit_range : (float, float)
-        Band of the fit [rad/s].
-    doublet_amplitude, doublet_s, pulse_width : float
-        Verification doublet [rad], record [s], pulse [s]. It is larger than the
-        sweeps: the hover wake's own unsteadiness (~0.002 in lam0) would otherwise be
-        as large as its response.
     doublet_control : str, optional
         Control of the doublet (default: the structure's first, the collective).
-    noise_floor_s : float
-        Length of the zero-input run [s] whose TIC is the wake's noise floor.
     start_points : int
         Lowest frequencies averaged for the data-driven start.
     reduce : bool
         Run the automatic reduction (Fig. 6.1) after the first fit.
     insensitivity_max, cramer_rao_max : float
         Reduction thresholds [%] (guideline 10 % and 20 %).
-    n_omega : int
-        Frequencies per response in the cost (CIFER: 20).
-    coherence_min : float
-        Responses need this coherence on 5+ points to be fitted.
-    pade_order : int
-        Padé order of the delays in the aircraft model.
+
+    Examples
+    --------
+    >>> IdentificationSettings(sweep_s=30.0).fit_range
+    (1.0, 25.0)
     """
 
-    wake: object = None
-    sweep_s: float = 45.0
-    amplitude: float = 0.02
-    w_min: float = 0.7
-    w_max: float = 30.0
-    fit_range: tuple = (1.0, 25.0)
-    doublet_amplitude: float = 0.05
-    doublet_s: float = 4.0
-    pulse_width: float = 0.5
     doublet_control: str | None = None
-    noise_floor_s: float = 4.0
     start_points: int = 3
     reduce: bool = True
     insensitivity_max: float = 10.0
     cramer_rao_max: float = 20.0
-    n_omega: int = 20
-    coherence_min: float = 0.6
-    pade_order: int = 2
 
     def __post_init__(self):
-        if not 0 < self.w_min < self.w_max:
-            raise ValueError(f"need 0 < w_min < w_max [rad/s], got {self.w_min}, {self.w_max}")
-        lo, hi = self.fit_range
-        if not self.w_min <= lo < hi <= self.w_max:
-            raise ValueError(f"fit_range {self.fit_range} must lie inside ({self.w_min}, {self.w_max}) rad/s")
-        for name in ("sweep_s", "doublet_s", "noise_floor_s", "amplitude", "doublet_amplitude"):
+        super().__post_init__()
+        if isinstance(self.start_points, bool) or not isinstance(self.start_points, int) or self.start_points < 1:
+            raise ValueError(f"start_points must be an integer >= 1, got {self.start_points!r}")
+        for name in ("insensitivity_max", "cramer_rao_max"):
             if not getattr(self, name) > 0:
-                raise ValueError(f"{name} must be positive, got {getattr(self, name)!r}")
-        if self.start_points < 1:
-            raise ValueError("start_points must be >= 1")
-
-    @property
-    def wake_settings(self):
-        from aircraft.wake import WakeSettings
-        return self.wake if self.wake is not None else WakeSettings()
+                raise ValueError(f"{name} must be positive [%], got {getattr(self, name)!r}")
 
     def to_dict(self):
         d = asdict(self)
@@ -182,7 +148,7 @@ def identification_hash(config, condition, structure, settings=None, *, ct=None,
                "wake_code": getattr(_sweeps, "_CACHE_VERSION", "unknown"),
                "config": _wake_repr(config), "condition": asdict(condition), "structure": structure.spec(),
                "trim": _trim_request(config, ct, trim), "settings": settings.to_dict()}
-    return settings_hash(payload), payload
+    return settings_hash(payload, digits=16), payload
 
 
 #: aircraft fields the wake never sees (the pilot mixing): left out of the identification hash
@@ -216,12 +182,12 @@ class IdentifiedModel:
     structure : InflowStructure
     fit : flightid.FitResult
         Final (reduced) fit.
-    reduction : flightid.ReductionResult or None
+    reduction : flightid.reduction.ReductionResult or None
     responses : flightid.MeasuredResponse
         The joint input-output lambda/C (and lambda/beta_dot) responses fitted.
-    verification : flightid.VerificationResult
+    verification : flightid.verification.VerificationResult
         Doublet (not used in the fit).
-    noise_floor : flightid.VerificationResult
+    noise_floor : flightid.verification.VerificationResult
         The same on the zero-input run: the TIC the wake's own unsteadiness gives.
     trim : aircraft.wake.WakeTrim
     omega : float
@@ -231,7 +197,7 @@ class IdentifiedModel:
     provenance : dict
     hash_payload : dict
         What the settings hash was computed from.
-    staged : flightid.StagedFitResult or None
+    staged : flightid.staging.StagedFitResult or None
         The staged fit (§6.4.3) before the reduction, for structures with a
         :meth:`~InflowStructure.staged_plan` (its ``.log`` lists the stages).
     """
@@ -280,39 +246,19 @@ class IdentifiedModel:
         return out.reset_index()
 
     @property
+    def trust(self):
+        """The trust verdict, parameter by parameter with its reasons
+        (:func:`aircraft.identification.trust.trust_check`)."""
+        return trust_check(self)
+
+    @property
     def trusted(self) -> bool:
-        """True when :meth:`trust_failures` finds nothing (CIFER guidelines, no flat direction)."""
-        return not self.trust_failures()
+        """True when :func:`~aircraft.identification.trust.trust_check` trusts the model."""
+        return self.trust.passes
 
     def trust_failures(self) -> list:
-        """The reasons not to trust the model, as sentences; empty when it meets them all.
-
-        The guidelines (Tischler & Remple): every free parameter with a Cramér-Rao bound
-        below ``settings.cramer_rao_max`` % and an insensitivity below
-        ``settings.insensitivity_max`` %; J_ave <= :data:`TRUST_J_AVE_MAX` (a low
-        bound on a poor fit is no trust: the forward-flight mu = 0.2 model had every
-        CR < 20 % at J_ave 490); and no flat direction of the cost (a low J on a flat
-        valley is a failure, not a result).
-        """
-        out = []
-        free = self.fit.parameters[self.fit.parameters.status == "free"]
-        s = self.settings
-        if not len(free):
-            return ["no free parameter"]
-        cr, ins = free.cramer_rao_pct.to_numpy(float), free.insensitivity_pct.to_numpy(float)
-        bad_cr = free.parameter[~(cr < s.cramer_rao_max)].tolist()
-        bad_ins = free.parameter[~(ins < s.insensitivity_max)].tolist()
-        if bad_cr:
-            out.append(f"Cramer-Rao bound >= {s.cramer_rao_max:g} % (or undefined) on {bad_cr}")
-        if bad_ins:
-            out.append(f"insensitivity >= {s.insensitivity_max:g} % (or undefined) on {bad_ins}")
-        if not self.J_ave <= TRUST_J_AVE_MAX:
-            out.append(f"J_ave {self.J_ave:.4g} > {TRUST_J_AVE_MAX:g}")
-        deg = self.fit.degeneracy
-        if deg is not None and len(deg.flat_directions):
-            out.append(f"{len(deg.flat_directions)} flat direction(s) of the cost: "
-                       + "; ".join(deg.flat_directions.parameters.astype(str)))
-        return out
+        """The reasons not to trust the model, as sentences; empty when it is trusted."""
+        return self.trust.failures
 
     def to_pandas(self) -> pd.DataFrame:
         """The parameter table."""
@@ -335,7 +281,7 @@ class IdentifiedModel:
                                         pade_order=self.settings.pade_order, name=self.name)
 
     def to_record(self, description="") -> ModelRecord:
-        """The versioned-file form (:class:`aircraft.identification.store.ModelRecord`)."""
+        """The versioned-file form (:class:`aircraft.inflow.model_files.ModelRecord`)."""
         mats = self.fit.structure.matrices()
         loads_ref, inflow_ref = self._refs()
         if self.structure.form == "mltau":

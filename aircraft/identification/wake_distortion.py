@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from .structures import _low_frequency_inverse
+from .structures.base import _low_frequency_inverse
 
 __all__ = ["KR_CONTROLS", "WakeDistortionResult", "kr_frequency_response", "wake_distortion_from_runs",
            "identify_wake_distortion"]
@@ -73,7 +73,7 @@ def kr_frequency_response(lam_over_u, rotor_omega, lbar22):
     ------
     ValueError
         ``rotor_omega`` not positive, ``lbar22`` zero or not finite.
-    flightid.SignalNameError
+    flightid.errors.SignalNameError
         A needed signal is missing.
     """
     if not (isinstance(rotor_omega, (int, float, np.floating)) and math.isfinite(rotor_omega) and rotor_omega > 0):

@@ -336,7 +336,7 @@ class IdentifiedInflow(InflowModel):
 
     @classmethod
     def from_file(cls, path_or_name, pade_order=None):
-        """Load a versioned model file (:mod:`aircraft.identification.store`).
+        """Load a versioned model file (:mod:`aircraft.inflow.model_files`).
 
         Parameters
         ----------
@@ -353,8 +353,41 @@ class IdentifiedInflow(InflowModel):
         IdentifiedInflow
             About the file's trim (``loads_ref``, ``inflow_ref``), in our rotor frames.
         """
-        from aircraft.identification.store import load_record
-        return load_record(path_or_name).to_inflow(pade_order=pade_order)
+        from .model_files import load_record
+        return cls.from_record(load_record(path_or_name), pade_order=pade_order)
+
+    @classmethod
+    def from_record(cls, record, pade_order=None):
+        """The model of a :class:`aircraft.inflow.model_files.ModelRecord`, about its trim.
+
+        Parameters
+        ----------
+        record : ModelRecord
+            In ``mltau``, ``fgc`` or ``statespace`` form.
+        pade_order : int, optional
+            Padé order of the delays (default: the record's).
+
+        Returns
+        -------
+        IdentifiedInflow
+
+        Examples
+        --------
+        >>> from aircraft.inflow.model_files import load_record
+        >>> IdentifiedInflow.from_record(load_record("uh60_hover_3state")).rotors
+        ('',)
+        """
+        m = record.matrices
+        kw = dict(loads_ref=record.loads_ref, inflow_ref=record.inflow_ref, name=record.name)
+        if record.form == "mltau":
+            return cls.from_matrices(m["M"], m["L"], m["tau"], omega=record.omega, rotors=record.rotors,
+                                     time=record.time, pade_order=pade_order or record.pade_order, **kw)
+        if record.form == "fgc":
+            return cls.from_fgc(m["F"], m["G"], m["C"], rotors=record.rotors, input_order=record.inputs,
+                                tau=m.get("tau"), pade_order=pade_order or record.pade_order, **kw)
+        sys = control.ss(m["A"], m["B"], m["C"], np.zeros((m["C"].shape[0], m["B"].shape[1])),
+                         inputs=record.inputs, outputs=record.outputs)
+        return cls(sys, record.rotors, **kw)
 
     def to_file(self, path, *, omega, description="", provenance=None):
         """Write this model (its state-space matrices and trim) as a versioned model file.
@@ -376,12 +409,13 @@ class IdentifiedInflow(InflowModel):
         -------
         Path
         """
-        from aircraft.identification.store import ModelRecord, settings_hash
+        from .model_files import ModelRecord
+        from aircraft.provenance import settings_hash
         mats = {"A": self.system.A, "B": self.system.B, "C": self.system.C}
         rec = ModelRecord(name=self.name, form="statespace", rotors=self.rotors, omega=float(omega),
                           matrices=mats, inputs=self.input_names, outputs=self.output_names,
                           loads_ref=self.loads_ref, inflow_ref=self.inflow_ref, description=description,
-                          settings_hash=settings_hash(mats), provenance=dict(provenance or {}))
+                          settings_hash=settings_hash(mats, digits=16), provenance=dict(provenance or {}))
         return rec.save(path)
 
     @classmethod

@@ -5,7 +5,7 @@ An identified coaxial 12-state answers two kinds of input: the rotor loads
 rates (``beta1s_dot_U``, ...: the wake-curvature path). Flying the model with one
 group disconnected says which path sets a derivative of the aircraft, e.g. which
 one takes the roll damping away below the fit band
-(:func:`aircraft.identification.twelve_state_variants.compare_twelve_state_variants`).
+(:func:`studies.analysis.twelve_state_variants.compare_twelve_state_variants`).
 
 ::
 

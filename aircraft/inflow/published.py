@@ -10,7 +10,7 @@ rotor, in the dissertation's (= our, :mod:`aircraft.inflow.base`) perturbation f
 row-wise (Eq. 2.16). The coaxial models are printed in one common frame for both
 rotors; ours mirrors the lower rotor's, so their cross-rotor lateral couplings
 change sign in our frames: :func:`in_rotor_frames` converts (derivation in
-:mod:`aircraft.identification.frames`; :meth:`IdentifiedInflow.from_published` keeps
+:mod:`aircraft.inflow.frames`; :meth:`IdentifiedInflow.from_published` keeps
 the printed frame, ``IdentifiedInflow.from_file("eq5_3")`` loads the converted model).
 ``time`` says what ``M`` multiplies:
 
@@ -188,7 +188,7 @@ def in_rotor_frames(model, directions=None):
     The dissertation writes both coaxial rotors in one common frame; ours gives
     each rotor its own (mirrored for the clockwise lower rotor). The conversion
     flips the signs of the cross-rotor lateral couplings only; it is derived and
-    documented in :mod:`aircraft.identification.frames`. Single-rotor models come
+    documented in :mod:`aircraft.inflow.frames`. Single-rotor models come
     back unchanged (apart from ``frame``).
 
     Parameters
@@ -204,14 +204,14 @@ def in_rotor_frames(model, directions=None):
     PublishedInflowModel or PublishedFGCModel
         Same type, ``frame="rotor"``; delays unchanged.
     """
-    from aircraft.identification.frames import COAXIAL_DIRECTIONS, FrameError, convert_frames
+    from aircraft.inflow.frames import COAXIAL_DIRECTIONS, FrameError, convert_frames
     if model.frame != "printed":
         raise FrameError(f"{model.name} is already in frame {model.frame!r}")
     rotors = tuple(model.rotors)
     if directions is None:
         directions = {"": 1} if rotors == ("",) else COAXIAL_DIRECTIONS
     loads, lam = load_names(rotors), inflow_names(rotors)
-    note = (model.notes + " Converted to our rotor frames (aircraft.identification.frames: "
+    note = (model.notes + " Converted to our rotor frames (aircraft.inflow.frames: "
             "cross-rotor lateral couplings change sign).").strip()
     if isinstance(model, PublishedFGCModel):
         states = fgc_state_names(rotors)

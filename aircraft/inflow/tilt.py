@@ -2,7 +2,7 @@
 
 A coaxial rotor's inflow answers a held tilt of a tip-path plane relative to the
 other rotor: the tilted blades move through the vertical gradient of the other
-rotor's induced velocity (:mod:`aircraft.identification.tilt_inputs`). The tilt
+rotor's induced velocity (:mod:`aircraft.identification.structures.tilt`). The tilt
 that matters is the one relative to the shaft (both rotors move with the
 airframe), i.e. the aircraft's flapping states ``beta1s, beta1c`` of each rotor in
 its own frame (:mod:`aircraft.inflow.base`), not the space-fixed tip-path-plane

@@ -6,10 +6,10 @@ import pandas as pd
 import pytest
 import control
 
-from flightid import (DataError, IdentificationError, InputValueError, MeasuredResponse,
-                      SignalNameError, combine_responses, doublet, frequency_response,
-                      frequency_sweep, joint_input_output, multistep_3211, shaped_noise,
-                      theil_inequality, verify)
+from flightid import (DataError, IdentificationError, MeasuredResponse, combine_responses, doublet, frequency_response, frequency_sweep, joint_input_output, multistep_3211, verify)
+from flightid.errors import InputValueError, SignalNameError
+from flightid.sweeps import shaped_noise
+from flightid.verification import theil_inequality
 
 NAN, INF = float("nan"), float("inf")
 

@@ -17,8 +17,8 @@ import pytest
 import scipy.signal as sig
 
 from aircraft.inflow.published import COAXIAL_HOVER_12STATE
-from flightid import (FGCStructure, Stage, combine_responses, fit_staged, frequency_response,
-                      frequency_sweep, joint_input_output)
+from flightid import (FGCStructure, combine_responses, fit_staged, frequency_response, frequency_sweep, joint_input_output)
+from flightid.staging import Stage
 
 TRUTH = COAXIAL_HOVER_12STATE
 INPUTS = list(TRUTH.input_order)            # G's columns as printed (Eq. 6.2 order)

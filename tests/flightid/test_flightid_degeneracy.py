@@ -5,8 +5,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from flightid import (FGCStructure, MeasuredResponse, NoInformationError, IdentificationError, fit,
-                      reduce)
+from flightid import FGCStructure, MeasuredResponse, IdentificationError, fit, reduce
+from flightid.degeneracy import NoInformationError
 
 # 39 points: the default 20-point fit grid is every other one, so no interpolation error
 W = np.geomspace(0.5, 30.0, 39)

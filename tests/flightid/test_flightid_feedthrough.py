@@ -74,74 +74,14 @@ def test_bad_patterns_are_refused():
                                   initial={"m": 1, "l": 1})
 
 
-# -- the coaxial structures of aircraft.identification.six_state_diagnostics -----------------
+# -- the coaxial structures of studies.analysis.six_state_diagnostics -----------------
 
 def _rotation(psi):
     c, s = np.cos(psi), np.sin(psi)
     return np.array([[c, s], [-s, c]])
 
 
-@pytest.mark.parametrize("frame, lower_sign", [("rotor", -1.0), ("printed", 1.0)])
-def test_feedthrough_ties_are_invariant_under_a_turn_of_the_hover_wake(frame, lower_sign):
-    from aircraft.identification.six_state_diagnostics import Coaxial6StateFeedthrough
-    st = Coaxial6StateFeedthrough(frame)
-    rng = np.random.default_rng(3)
-    names = [f"{p}{i}{j}" for p in "mltd" for i, j in [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2),
-                                                       (4, 4), (5, 5)]]
-    values = {n: rng.uniform(0.05, 1.0) * (1.0 if n[0] == "t" else rng.choice([-1.0, 1.0])) for n in names}
-    mats = st.build(values, 23.7).matrices()
-    t = np.eye(6)
-    t[1:3, 1:3] = _rotation(0.8)
-    t[4:6, 4:6] = _rotation(lower_sign * 0.8)
-    for key in ("M", "L", "D"):
-        np.testing.assert_allclose(t @ mats[key] @ np.linalg.inv(t), mats[key], atol=1e-12)
 
 
-def test_coaxial_sum_difference_signs_follow_the_data():
-    from aircraft.identification import Coaxial6State
-    from aircraft.identification.six_state_diagnostics import coaxial_sum_difference
-    st = Coaxial6State()
-    w = np.geomspace(0.7, 30.0, 30)
-    # a lateral cross-rotor response of opposite sign to the own one (our mirrored
-    # frames), collective and longitudinal of the same sign
-    h = np.zeros((6, 6, w.size), dtype=complex)
-    for i, j, v in [(0, 0, 4.5), (0, 3, 2.2), (3, 0, 5.0), (3, 3, 3.3), (1, 1, -15.0), (4, 1, 16.0),
-                    (1, 4, 7.0), (4, 4, -11.0), (2, 2, -14.0), (5, 2, -15.0), (2, 5, -5.0), (5, 5, -11.0)]:
-        h[i, j] = v / (1 + 1j * w / 8.0)
-    data = MeasuredResponse(h, w, np.full(h.shape, 0.95), st.inputs, st.outputs)
-    t, s_inv, outs, ins, signs = coaxial_sum_difference(data, st)
-    assert signs == [1.0, -1.0, 1.0]
-    assert outs[:3] == ["lam0_sum", "lam1s_sum", "lam1c_sum"]
-    np.testing.assert_allclose(t @ t.T, np.eye(6), atol=1e-15)
 
 
-def test_six_state_diagnostics_pinned_mass_row_recovers_eq_5_3_on_its_own_data():
-    """Exact data from the printed Eq. 5.3 (in our frames): with the apparent-mass
-    diagonal held at its true value and every other parameter started 10 % off, the
-    fourth row must land on the truth (J ~ 0, Lbar within 0.1 %). The pinned
-    parameters must be reported as not free."""
-    import json
-    from pathlib import Path
-    from aircraft.identification import Coaxial6State
-    from aircraft.identification.six_state_diagnostics import six_state_diagnostics
-    rec = json.loads((Path(__file__).resolve().parents[2] / "aircraft/data/models/published_eq5_3.json")
-                     .read_text())
-    mats = {k: np.array(v) for k, v in rec["matrices"].items()}
-    idx = {"11": (0, 0), "14": (0, 3), "22": (1, 1), "25": (1, 4), "41": (3, 0), "44": (3, 3),
-           "52": (4, 1), "55": (4, 4)}
-    truth = {f"{p}{k}": float(mats[key][i, j]) for p, key in (("m", "M"), ("l", "L"), ("t", "tau"))
-             for k, (i, j) in idx.items()}
-    omega = float(rec["omega_rad_s"])
-    st = Coaxial6State()
-    w = np.geomspace(0.7, 30.0, 60)
-    h = st.build(truth, omega).frequency_response(w)
-    data = MeasuredResponse(h, w, np.ones(h.shape), st.inputs, st.outputs)
-    start = {k: v if k in st.protected else v * 1.1 + (0.005 if k[0] == "t" else 0.0) for k, v in truth.items()}
-    summary, pairs = six_state_diagnostics(data, omega, start=start, feedthrough_max_nfev=20)
-    row = summary.iloc[3]
-    assert row.fit.startswith("Eq. 5.3, M diagonal fixed")
-    assert row.J_ave_rotor_pairs < 1e-3
-    assert row.free_parameters == 24 - len(st.protected)
-    for k in ("l11", "l14", "l41", "l44", "l22"):
-        assert row[k] == pytest.approx(truth[k], rel=1e-3)
-    assert set(pairs.fit) == set(summary.fit)

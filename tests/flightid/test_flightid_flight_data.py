@@ -8,7 +8,8 @@ import pandas as pd
 import pytest
 from scipy.signal import lsim
 
-from flightid import DataError, InputValueError, SignalNameError, frequency_response
+from flightid import DataError, frequency_response
+from flightid.errors import InputValueError, SignalNameError
 from flightid.flight_data import concatenated_response, read_flight_data
 
 K, A = 2.0, 1.5          # truth: y = K / (s + A) u

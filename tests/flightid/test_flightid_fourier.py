@@ -9,7 +9,8 @@ import pandas as pd
 import pytest
 from scipy.signal import lsim
 
-from flightid import GainDelayStructure, InputValueError, StateSpaceStructure, identify, read_flight_data
+from flightid import GainDelayStructure, StateSpaceStructure, identify, read_flight_data
+from flightid.errors import InputValueError
 from flightid.fourier import finite_fourier_transform
 from flightid.transfer_function import TransferFunctionStructure
 

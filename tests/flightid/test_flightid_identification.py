@@ -3,12 +3,9 @@ import pytest
 import control
 
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
-from flightid import (IdentificationError, MLTauStructure, FGCStructure, GainDelayStructure,
-                      SingularInputError, combine_responses, doublet, fit, frequency_response,
-                      frequency_sweep, joint_input_output, reduce, verify)
-from aircraft.identification.synthetic import (coaxial_sweep_set, simulate_mltau,
-                                               printed_6state_structure as coaxial_6state_structure,
-                                               printed_6state_values as truth_values)
+from flightid import (IdentificationError, MLTauStructure, FGCStructure, GainDelayStructure, combine_responses, doublet, fit, frequency_response, frequency_sweep, joint_input_output, reduce, verify)
+from flightid.errors import SingularInputError
+from aircraft.identification.testing import (coaxial_sweep_set, simulate_mltau, printed_6state_structure as coaxial_6state_structure, printed_6state_values as truth_values)
 
 OMEGA = 27.0
 

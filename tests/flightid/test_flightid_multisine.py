@@ -8,9 +8,11 @@ import numpy as np
 import pytest
 import scipy.signal as sig
 
-from flightid import (DataError, InputValueError, MeasuredResponse, MIMOResponse, SingularInputError,
-                      frequency_response, harmonic_response, joint_input_output, mimo_response,
-                      orthogonal_multisine, relative_peak_factor, shaped_noise)
+from flightid import (DataError, MeasuredResponse, frequency_response, joint_input_output, mimo_response, orthogonal_multisine)
+from flightid.errors import InputValueError, SingularInputError
+from flightid.mimo import MIMOResponse, harmonic_response
+from flightid.multisine import relative_peak_factor
+from flightid.sweeps import shaped_noise
 
 DT = 0.01
 # well-damped 2-state, 2-input, 3-output system (poles -2 +- 2j, zeta 0.71)

@@ -3,8 +3,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from flightid import (FGCStructure, IdentificationError, MeasuredResponse, Stage, StagedFitResult, fit,
-                      fit_staged)
+from flightid import FGCStructure, IdentificationError, MeasuredResponse, fit, fit_staged
+from flightid.staging import Stage, StagedFitResult
 
 # 39 points: the default 20-point fit grid is every other one (no interpolation error)
 W = np.geomspace(0.5, 30.0, 39)
@@ -96,7 +96,7 @@ def test_staged_plan_validation():
         fit_staged(_structure(), _data(), [Stage("bad", free=["nope"])])
     with pytest.raises(IdentificationError, match="one of"):
         fit_staged(_structure(), _data(), [Stage("bad", free="everything")])
-    with pytest.raises(IdentificationError, match="non-empty sequence of flightid.Stage"):
+    with pytest.raises(IdentificationError, match="non-empty sequence of flightid.staging.Stage"):
         fit_staged(_structure(), _data(), [])
     # an error inside a stage names the stage
     with pytest.raises(IdentificationError, match=r"stage 0 \('v only'\)"):

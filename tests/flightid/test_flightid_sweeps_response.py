@@ -2,8 +2,8 @@ import numpy as np
 import pytest
 import scipy.signal as sig
 
-from flightid import (DataError, doublet, frequency_response, frequency_sweep, multistep_3211,
-                      combine_responses, shaped_noise)
+from flightid import (DataError, doublet, frequency_response, frequency_sweep, multistep_3211, combine_responses)
+from flightid.sweeps import shaped_noise
 
 
 def test_sweep_starts_and_ends_at_trim_and_covers_band():

@@ -8,7 +8,8 @@ import pytest
 import control
 from scipy.signal import lsim
 
-from flightid import InputValueError, frequency_response, frequency_sweep, fit
+from flightid.errors import InputValueError
+from flightid import frequency_response, frequency_sweep, fit
 from flightid.state_space import StateSpaceStructure
 from flightid.transfer_function import (TransferFunctionStructure, fit_transfer_function, loes_fit,
                                         loes_mismatch)

@@ -15,7 +15,7 @@ from aircraft.configs import coaxial_compound
 from aircraft.helicopter import HelicopterSettings, linearize, trim
 from aircraft.helicopter.hold import hold_states
 from aircraft.helicopter.tilt_coupling import helicopter_for
-from aircraft.identification.tilt_inputs import tilt_inflow_from_record
+from aircraft.identification.structures.tilt import tilt_inflow_from_record
 from aircraft.inflow import DynamicClimb
 from controllers import roll_design_plant
 

@@ -8,7 +8,7 @@ evaluated with numpy for the Padé realisation.
 import numpy as np
 import pytest
 
-from aircraft.identification import Coaxial6State, Coaxial12State
+from aircraft.identification.structures import Coaxial6State, Coaxial12State
 from aircraft.inflow import IdentifiedInflow
 from aircraft.inflow.pitt_peters import InflowError
 

@@ -14,8 +14,8 @@ Independent checks:
 import numpy as np
 import pytest
 
-from aircraft.identification import Coaxial6State
-from aircraft.identification.axisymmetric import Coaxial6StateAxisymmetric
+from aircraft.identification.structures import Coaxial6State
+from aircraft.identification.structures.axisymmetric import Coaxial6StateAxisymmetric
 from flightid import MeasuredResponse, fit
 
 OMEGA = 23.7                     # rotor speed [rad/s]
@@ -154,32 +154,18 @@ def test_bad_bands_are_refused(bands, match):
         Coaxial6StateAxisymmetric(bands=bands)
 
 
-def test_six_state_diagnostics_fits_the_axisymmetric_rows_on_their_own_data():
-    # exact data with the b terms: the axisymmetric row from the pipeline's start lands
-    # on the truth, and its cost table holds the 8 off-harmonic pairs Eq. 5.3 cannot fit
-    from aircraft.identification.six_state_diagnostics import six_state_diagnostics
-    _, data = _exact_data()
-    summary, pairs = six_state_diagnostics(data, OMEGA, feedthrough_max_nfev=20)
-    rows = summary[summary.fit.str.startswith("axisymmetric")]
-    assert len(rows) >= 2 and rows.iloc[-1].fit_band_rad_s == "4-25"
-    best = rows.iloc[:-1].sort_values("J_ave_fitted_pairs").iloc[0]
-    assert best.pairs_fitted == 20 and best.J_ave_fitted_pairs < 1.0
-    for k in ("l11", "l14", "l41", "l44", "l22", "m22"):
-        assert best[k] == pytest.approx(TRUTH[k], rel=0.02), k
-    off = pairs[(pairs.fit == best.fit) & pairs.output.str.startswith("lam1s") & pairs.input.str.startswith("CM")]
-    assert len(off) == 4
 
 
 # --- a priori values (the shipped coaxial_hover_6state_axisymmetric holds m11, m44) -------------
 
 def _pp_truth():
-    from aircraft.identification.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
+    from aircraft.identification.structures.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
     return {**TRUTH, **PITT_PETERS_COLLECTIVE_MASS}
 
 
 def test_a_priori_values_are_held_through_starts_and_fit():
     from aircraft.identification import IdentificationSettings
-    from aircraft.identification.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
+    from aircraft.identification.structures.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
     from aircraft.identification.pipeline import _start_candidates
     truth = _pp_truth()
     _, data = _exact_data(truth)
@@ -209,7 +195,7 @@ def test_a_wrong_a_priori_value_costs_what_the_data_say():
 
 def test_a_priori_enters_the_spec_and_the_registry():
     from aircraft.identification import STRUCTURES, get_structure
-    from aircraft.identification.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
+    from aircraft.identification.structures.axisymmetric import PITT_PETERS_COLLECTIVE_MASS
     plain = Coaxial6StateAxisymmetric()
     assert "a_priori" not in plain.spec()      # the plain structure's settings hash is unchanged
     held = get_structure("coaxial_6state_axisymmetric_pp_collective_mass")

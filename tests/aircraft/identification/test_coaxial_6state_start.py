@@ -17,7 +17,7 @@ the model.
 import numpy as np
 import pytest
 
-from aircraft.identification import Coaxial6State, Coaxial12State
+from aircraft.identification.structures import Coaxial6State, Coaxial12State
 from aircraft.identification.starts import equation_error_masses, equation_error_start
 from flightid import MeasuredResponse, fit
 

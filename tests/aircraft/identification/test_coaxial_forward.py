@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from aircraft.identification import STRUCTURES, CoaxialForward12State, get_structure
-from aircraft.identification.coaxial_forward import F_PATTERN, G_PATTERN
+from aircraft.identification import STRUCTURES, get_structure
+from aircraft.identification.structures import CoaxialForward12State
+from aircraft.identification.structures.coaxial_forward import F_PATTERN, G_PATTERN
 from aircraft.inflow.base import inflow_names, load_names
 from aircraft.inflow.published import COAXIAL_200KT_12STATE, COAXIAL_HOVER_12STATE
 from flightid import MeasuredResponse, fit
@@ -149,11 +150,11 @@ def test_table_6_3_is_the_printed_table():
 
 def test_trim_request_and_condition():
     import math
-    from aircraft.identification.coaxial_200kt import (SPEED_200KT, forward_flight_condition,
-                                                       forward_trim_request)
+    from aircraft.identification.coaxial_forward_flight import SPEED_200KT, forward_trim_request
+    from aircraft.identification.conditions import flight_condition
     req = forward_trim_request(0.01248)
     assert req["mode"] == "torque_balance" and req["ct"] == (0.00624, 0.00624)
-    fc = forward_flight_condition()
+    fc = flight_condition(speed=SPEED_200KT, alpha=math.radians(2.0))
     assert fc.speed == pytest.approx(102.89, abs=0.01) and fc.alpha == pytest.approx(math.radians(2.0))
     # mu = V cos(alpha) / (Omega R) = 0.54 at the cruise rotor speed (§6.2.2)
     from aircraft.configs import coaxial_compound
@@ -170,7 +171,9 @@ def test_trim_request_and_condition():
     with pytest.raises(ValueError, match="lift_offset"):
         forward_trim_request(0.01248, lift_offset=0.9)
     with pytest.raises(ValueError, match="speed"):
-        forward_flight_condition(speed=0.0)
+        flight_condition(speed=-1.0)
+    with pytest.raises(ValueError, match="exactly one"):
+        flight_condition(coaxial_compound(), 0.1, speed=50.0)
 
 
 def test_aircraft_lift_offset_follows_the_differential_cyclic():
@@ -180,7 +183,7 @@ def test_aircraft_lift_offset_follows_the_differential_cyclic():
     # carries lift offset without it (measured 0.0 rad: 0.319/0.298, 0.06 rad: 0.376/0.357;
     # with the former own-frame theta1c pairing -0.042/-0.069 and 0.096/0.078)
     from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
-    from aircraft.identification.coaxial_200kt import SPEED_200KT, aircraft_lift_offset
+    from aircraft.identification.coaxial_forward_flight import SPEED_200KT, aircraft_lift_offset
     from aircraft.inflow import IsolatedRotors
     from aircraft.configs import coaxial_compound
     cfg = coaxial_compound(cruise=True)
@@ -194,44 +197,8 @@ def test_aircraft_lift_offset_follows_the_differential_cyclic():
         assert los == pytest.approx(-tr.loads[f"CL_{r}"] / tr.loads[f"CT_{r}"], abs=5e-4)   # the rounding
 
 
-def test_isolated_rotor_check_bad_input_and_single_rotor():
-    from aircraft.configs import uh60_single_rotor
-    from aircraft.identification.coaxial_200kt import identify_coaxial_forward, isolated_rotor_check
-    with pytest.raises(ValueError, match="inflows is empty"):
-        isolated_rotor_check({})
-    with pytest.raises(ValueError, match="band"):
-        isolated_rotor_check({"x": object()}, band=(5.0, 1.0))
-    with pytest.raises(ValueError, match="thresholds"):
-        isolated_rotor_check({"x": object()}, threshold_db=0.0)
-    with pytest.raises(ValueError, match="coaxial"):
-        identify_coaxial_forward(uh60_single_rotor(), ct_total=0.0124)
-    with pytest.raises(TypeError, match="CoaxialForward12State"):
-        identify_coaxial_forward(structure="coaxial_6state", ct_total=0.0124)
 
 
-def test_isolated_rotor_check_against_itself_and_the_printed_model():
-    # Isolated Rotors entered as a model must coincide with the reference (0 dB, 0 deg):
-    # the plumbing compares like with like. The printed Eqs. 6.12-6.13 were identified at
-    # the lift offsets of the dissertation's trim; with the lift-offset input paired as
-    # Eq. 7.19 says, our aircraft trims to lift offsets ~0.35 at 200 kt, where the printed
-    # model finds no trim within the budget: the check reports that as a verdict, not a crash
-    from aircraft.identification.coaxial_200kt import isolated_rotor_check
-    from aircraft.inflow import IdentifiedInflow, IsolatedRotors
-    from aircraft.inflow.published import in_rotor_frames
-    w = np.logspace(0.0, np.log10(20.0), 30)
-    chk = isolated_rotor_check({"copy": IsolatedRotors(),
-                                "Eqs. 6.12-6.13": IdentifiedInflow.from_published(
-                                    in_rotor_frames(COAXIAL_200KT_12STATE))}, omega=w)
-    d = chk.differences.set_index(["model", "response"])
-    assert (d.loc["copy"].max_abs_magnitude_diff_db < 1e-9).all()
-    assert chk.holds("copy")
-    v = chk.verdicts().set_index("model")
-    assert v.loc["copy", "isolated_rotors_hold"] and v.loc["copy", "trim"] == "converged"
-    assert v.loc["Eqs. 6.12-6.13", "trim"].startswith("failed")
-    with pytest.raises(KeyError, match="no model"):
-        chk.holds("nothing")
-    fig = chk.plot()
-    assert len(fig.axes) == 8
 
 
 @pytest.mark.slow
@@ -260,12 +227,3 @@ def test_study_small_end_to_end(tmp_path):
     assert "J_ave" in done.stdout and "Isolated Rotors" in done.stdout
 
 
-def test_isolated_rotor_check_reports_when_no_model_trims():
-    # every model but the reference failing to trim is a verdict, not a KeyError
-    from aircraft.identification.coaxial_200kt import isolated_rotor_check
-    from aircraft.inflow import IdentifiedInflow
-    from aircraft.inflow.published import in_rotor_frames
-    chk = isolated_rotor_check({"Eqs. 6.12-6.13": IdentifiedInflow.from_published(
-        in_rotor_frames(COAXIAL_200KT_12STATE))}, omega=np.logspace(0.0, 1.0, 10))
-    v = chk.verdicts()
-    assert list(v.model) == ["Eqs. 6.12-6.13"] and v.trim.iloc[0].startswith("failed")

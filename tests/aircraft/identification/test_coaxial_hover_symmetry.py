@@ -13,7 +13,7 @@ from geometry alone, not from the frame conversion code.
 import numpy as np
 import pytest
 
-from aircraft.identification import Coaxial6State, Coaxial12State
+from aircraft.identification.structures import Coaxial6State, Coaxial12State
 
 NAMES = [f"{p}{i}{j}" for p in "mlt" for i, j in [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)]]
 

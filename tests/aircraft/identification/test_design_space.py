@@ -16,9 +16,9 @@ from matplotlib.figure import Figure
 
 from aircraft import coaxial_compound, uh60_single_rotor
 from aircraft.helicopter import Helicopter, HelicopterSettings, trim
-from aircraft.identification import (Coaxial6State, DesignPoint, DesignSpaceError, DesignSpaceResult,
-                                     IdentificationSettings, identify_design_space, identify_inflow,
-                                     spaced_config)
+from aircraft.identification.structures import Coaxial6State
+from aircraft.identification.design_space import DesignPoint, DesignSpaceError, spaced_config
+from aircraft.identification import (DesignSpaceResult, IdentificationSettings, identify_design_space, identify_inflow)
 from aircraft.identification.design_space import KEY_PARAMETERS
 from aircraft.inflow import IdentifiedInflow, InflowError, ScheduledInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames

@@ -16,10 +16,9 @@ import pytest
 from scipy import signal
 
 from aircraft.configs import coaxial_compound, uh60_single_rotor
-from aircraft.identification import (KR_CONTROLS, STRUCTURES, SingleRotorForward, forward_comparison_table,
-                                     forward_condition, get_structure, identify_forward_flight,
-                                     identify_wake_distortion, kr_frequency_response, pitt_peters_forward,
-                                     wake_distortion_from_runs)
+from aircraft.identification.wake_distortion import (KR_CONTROLS, kr_frequency_response, wake_distortion_from_runs)
+from aircraft.identification import (STRUCTURES, flight_condition, get_structure, identify_forward_flight, identify_wake_distortion, pitt_peters_forward)
+from aircraft.identification.structures import SingleRotorForward
 from aircraft.inflow import KR_ANALYTICAL, PittPeters, RotorOperatingPoint
 from aircraft.inflow.published import UH60_MU01_MFW, UH60_MU02_MFW
 
@@ -102,11 +101,16 @@ def test_pitt_peters_forward_hover_limit_and_forward_couplings():
         RotorOperatingPoint(OMEGA, mu=-0.1)
 
 
-def test_forward_condition_sets_the_advance_ratio():
+def test_flight_condition_sets_the_advance_ratio():
+    # one definition for every identification: mu = V cos(alpha) / (Omega R)
     cfg = uh60_single_rotor()
     rc = cfg.rotors[0]
-    fc = forward_condition(cfg, 0.2, math.radians(2.0))
+    fc = flight_condition(cfg, 0.2, math.radians(2.0))
     assert fc.speed * math.cos(fc.alpha) / (rc.omega * rc.radius) == pytest.approx(0.2, rel=1e-12)
+    assert flight_condition(cfg, 0.0).speed == 0.0                      # hover (off-rotor models)
+    # the linearised Pitt-Peters reference uses the same inflow through the disk
+    assert flight_condition(cfg, 0.1, 0.05).speed * math.sin(0.05) / (rc.omega * rc.radius) == \
+        pytest.approx(0.1 * math.tan(0.05), rel=1e-12)
 
 
 # -- K_R on synthetic data -----------------------------------------------------------------
@@ -196,13 +200,13 @@ def test_bad_input_is_refused_with_clear_messages():
     with pytest.raises(ValueError, match="pattern"):
         SingleRotorForward(pattern="diagonal")
     with pytest.raises(ValueError, match="advance ratio"):
-        forward_condition(uh60_single_rotor(), 0.0)
+        flight_condition(uh60_single_rotor(), -0.1)
+    with pytest.raises(ValueError, match="mu > 0"):
+        identify_forward_flight(uh60_single_rotor(), 0.0, cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="single rotor"):
         identify_forward_flight(coaxial_compound(), 0.1, cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="single rotor"):
         identify_wake_distortion(coaxial_compound(), cache_dir=None, progress=False)
-    with pytest.raises(ValueError, match="at least one"):
-        forward_comparison_table({})
     runs = _synthetic_runs(1.0, T=20.0)
     with pytest.raises(ValueError, match="five excitations"):
         wake_distortion_from_runs(runs, KR_CONTROLS[:4], OMEGA, CT)

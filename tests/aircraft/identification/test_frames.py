@@ -1,6 +1,6 @@
 """Frame conversion between the dissertation's common frame and our rotor frames.
 
-The checks are independent of :mod:`aircraft.identification.frames`: the
+The checks are independent of :mod:`aircraft.inflow.frames`: the
 harmonics of one physical field (and of a rotated one) are computed with the
 wake's own blade geometry (``FreeVortexWake._blade_frames``) and blade-sum
 harmonic code (:mod:`aircraft.wake.outputs`) for a counter-clockwise and a
@@ -11,7 +11,8 @@ import types
 import numpy as np
 import pytest
 
-from aircraft.identification import Coaxial6State, Coaxial12State, FrameError, convert_frames, frame_signs
+from aircraft.identification.structures import Coaxial6State, Coaxial12State
+from aircraft.inflow.frames import FrameError, convert_frames, frame_signs
 from aircraft.inflow import IdentifiedInflow, inflow_names, load_names
 from aircraft.inflow.published import (COAXIAL_HOVER_6STATE, COAXIAL_HOVER_12STATE, UH60_HOVER_MFW,
                                        fgc_state_names, in_rotor_frames)

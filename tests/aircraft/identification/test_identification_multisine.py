@@ -1,7 +1,7 @@
 """identify_inflow_multisine against a known truth, the wake replaced by a scipy simulation.
 
 ``run_sweeps`` is swapped for a stand-in that drives a known 3-state M/L/tau inflow
-model (simulated with scipy, :func:`aircraft.identification.synthetic.simulate_mltau`)
+model (simulated with scipy, :func:`aircraft.identification.testing.simulate_mltau`)
 through a fully populated control-to-load mixing with each spec's own input
 signals, so the library pipeline (one multisine record -> MIMO response -> joint
 input-output -> fit -> verification) is checked against numbers it did not make.
@@ -17,10 +17,11 @@ import scipy.signal as sig
 
 import aircraft.wake as wake_pkg
 from aircraft.configs import uh60_single_rotor
-from aircraft.identification import IdentificationSettings, PipelineError, SingleRotor3State, identify_inflow
+from aircraft.identification import IdentificationSettings, PipelineError, identify_inflow
+from aircraft.identification.structures import SingleRotor3State
 from aircraft.identification.multisine import (MultisineSettings, identify_inflow_multisine,
                                                record_revolutions)
-from aircraft.identification.synthetic import mixing_matrix, simulate_mltau
+from aircraft.identification.testing import mixing_matrix, simulate_mltau
 from aircraft.wake import WakeSettings
 
 TRUTH = {"m11": 0.85, "m22": 0.4, "l11": 1.2, "l22": 0.6, "t11": 0.03, "t22": 0.02}

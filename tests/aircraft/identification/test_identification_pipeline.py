@@ -8,8 +8,9 @@ from matplotlib.figure import Figure
 
 from aircraft import IdentificationSettings, identify_inflow
 from aircraft.configs import coaxial_compound, uh60_single_rotor
-from aircraft.identification import (Coaxial6State, Coaxial12State, PipelineError, SingleRotor3State,
-                                     identification_hash, load_record)
+from aircraft.identification.structures import Coaxial6State, Coaxial12State, SingleRotor3State
+from aircraft.identification import PipelineError, identification_hash
+from aircraft.inflow.model_files import load_record
 from aircraft.inflow import IdentifiedInflow
 from aircraft.wake import FlightCondition, WakeSettings
 
@@ -115,13 +116,15 @@ def test_trust_says_why_and_counts_the_cost(model):
     # the tiny wake's model: every reason is a sentence, and `trusted` is their absence
     reasons = model.trust_failures()
     assert model.trusted == (reasons == [])
+    # one row per free parameter; a failing row is named in the reasons
     free = model.parameters[model.parameters.status == "free"]
-    crs_ok = (free.cramer_rao_pct < model.settings.cramer_rao_max).all()
-    assert crs_ok == (not any("Cramer-Rao" in r for r in reasons))
+    assert model.trust.table.parameter.tolist() == free.parameter.tolist()
+    failing = model.trust.table.verdict.eq("fails").any()
+    assert failing == any("not kept by the guideline" in r for r in reasons)
     # the same parameters at a cost above the CIFER guideline are not trusted
     # (forward flight mu = 0.2 had every CR < 20 % at J_ave 490)
     import copy
-    from aircraft.identification.pipeline import TRUST_J_AVE_MAX
+    from aircraft.identification.trust import TRUST_J_AVE_MAX
     poor = copy.copy(model)
     poor.fit = copy.copy(model.fit)
     poor.fit.J_ave = 4.9 * TRUST_J_AVE_MAX
@@ -132,7 +135,7 @@ def test_trust_says_why_and_counts_the_cost(model):
 
 def test_start_candidates_add_the_lowest_coherent_points(model):
     from aircraft.identification.pipeline import _start_candidates
-    from aircraft.identification.structures import low_frequency_points
+    from aircraft.identification.structures.base import low_frequency_points
     from flightid import MeasuredResponse
     r = model.responses
     s = model.settings

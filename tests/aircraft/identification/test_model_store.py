@@ -5,8 +5,8 @@ import control
 import numpy as np
 import pytest
 
-from aircraft.identification import ModelFileError, load_record, shipped_models
-from aircraft.identification.regenerate import PUBLISHED_FILES, RECIPES, published_record, stale_models
+from aircraft.inflow.model_files import ModelFileError, load_record, shipped_models
+from aircraft.identification.shipped import PUBLISHED_FILES, RECIPES, published_record, stale_models
 from aircraft.inflow import IdentifiedInflow, PittPeters, RotorOperatingPoint
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, PUBLISHED_MODELS, in_rotor_frames
 
@@ -69,7 +69,7 @@ def test_every_published_file_is_shipped_and_matches_the_printed_data():
 def test_shipped_files_are_not_stale():
     # fails when the code that would make a shipped model (settings, structure,
     # pipeline version, wake code version, configuration) no longer matches the
-    # file: regenerate it with `python -m aircraft.identification.regenerate NAME`
+    # file: regenerate it with `rotorwake shipped-models NAME`
     assert stale_models() == {}
 
 
@@ -80,12 +80,12 @@ def test_shipped_wake_models_load_and_carry_their_tables():
         rec = load_record(name)
         if rec.settings["structure"]["key"] == "coaxial_12state_tilt":
             # its file holds the tilt integrators, which to_inflow refuses (marginally stable)
-            from aircraft.identification.tilt_inputs import tilt_inflow_from_record
+            from aircraft.identification.structures.tilt import tilt_inflow_from_record
             with pytest.raises(Exception, match="unstable"):
-                rec.to_inflow()
+                IdentifiedInflow.from_record(rec)
             inflow = tilt_inflow_from_record(rec)
         else:
-            inflow = rec.to_inflow()
+            inflow = IdentifiedInflow.from_record(rec)
         assert np.max(np.linalg.eigvals(inflow.system.A).real) < 0
         assert {"cramer_rao_pct", "insensitivity_pct", "value", "status"} <= set(rec.parameters.columns)
         assert {"output", "input", "J"} <= set(rec.cost_table.columns)
@@ -102,7 +102,7 @@ def test_shipped_single_rotor_gain_against_momentum_theory():
     lam_h = np.sqrt(rec.trim_outputs["CT"] / 2)
     gain = 1.0 / rec.matrices["L"][0, 0]
     assert abs(gain * 4 * lam_h - 1) < 0.30
-    dc = control.dcgain(rec.to_inflow().system)
+    dc = control.dcgain(IdentifiedInflow.from_record(rec).system)
     assert dc[0, 0] == pytest.approx(gain, rel=1e-6)
 
 

@@ -15,9 +15,8 @@ import pytest
 from scipy import signal
 
 from aircraft.configs import coaxial_compound, uh60_single_rotor
-from aircraft.identification import (OffRotorError, OffRotorSettings, OffRotorSurface, fit_off_rotor,
-                                     gain_delay_structure, horizontal_tail, identify_off_rotor,
-                                     wake_exposure, wing_under_hub)
+from aircraft.identification.off_rotor import (OffRotorError, fit_off_rotor, gain_delay_structure, horizontal_tail, wake_exposure, wing_under_hub)
+from aircraft.identification import OffRotorSettings, OffRotorSurface, identify_off_rotor
 from flightid import combine_responses, frequency_response, frequency_sweep, joint_input_output
 
 LAM = ["lam0", "lam1c", "lam1s"]

@@ -6,9 +6,8 @@ from scipy import signal
 from aircraft.configs import coaxial_compound
 from aircraft.helicopter import Helicopter, HelicopterSettings
 from aircraft.helicopter.tilt_coupling import TiltCoupledHelicopter, helicopter_for
-from aircraft.identification import ModelFileError
-from aircraft.identification.tilt_inputs import (ON_AXIS_TILT_GAINS, TILT_GAIN_NAMES, Coaxial12StateTilt,
-                                                 tilt_inflow_from_record)
+from aircraft.inflow.model_files import ModelFileError
+from aircraft.identification.structures.tilt import (ON_AXIS_TILT_GAINS, TILT_GAIN_NAMES, Coaxial12StateTilt, tilt_inflow_from_record)
 from aircraft.inflow.pitt_peters import InflowError
 from aircraft.inflow.tilt import TiltInflow
 
@@ -179,7 +178,7 @@ def test_rate_and_tilt_gains_are_recovered_from_lambda_over_beta_dot_sweeps():
     # near-wake flap-rate gains and the tilt gains, which both act on lambda /
     # beta_dot; that they come back within 5 % is the claim that rate and tilt
     # separate by phase (tilt = beta_dot / j omega) on a 1-25 rad/s band.
-    from aircraft.identification import load_record
+    from aircraft.inflow.model_files import load_record
     from flightid import combine_responses, fit, frequency_response, frequency_sweep
     rec = load_record("coaxial_hover_12state_tilt")
     st = Coaxial12StateTilt()

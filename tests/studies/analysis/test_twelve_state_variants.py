@@ -8,10 +8,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from aircraft.identification import Coaxial12State, get_structure
-from aircraft.identification.twelve_state_variants import (PITT_PETERS_COLLECTIVE_GAIN, VARIANTS,
-                                                           Coaxial12StateConstrained, TwelveStateComparison,
-                                                           compare_twelve_state_variants)
+from aircraft.identification.structures import Coaxial12State
+from aircraft.identification import get_structure
+from aircraft.identification.structures.constrained import (PITT_PETERS_COLLECTIVE_GAIN, VARIANTS, Coaxial12StateConstrained)
+from studies.analysis.twelve_state_variants import TwelveStateComparison, compare_twelve_state_variants
 
 OMEGA = 23.7                              # rad/s, the coaxial compound's rotor speed
 W = np.array([0.5, 2.0, 8.0, 25.0])       # rad/s, across and beyond the fit band
@@ -138,7 +138,7 @@ def test_steady_curvature_gain_is_the_K_R_of_eq_2_29():
     from aircraft.configs import coaxial_compound
     from aircraft.inflow import IdentifiedInflow
     from aircraft.inflow.base import flap_rate_names, load_names
-    from aircraft.identification.twelve_state_variants import _steady_curvature
+    from studies.analysis.twelve_state_variants import _steady_curvature
     omega = float(coaxial_compound().rotors[0].omega)
     order = load_names(("U", "L")) + flap_rate_names(("U", "L"))
     F, G = -2.0 * np.eye(12), np.zeros((12, len(order)))

@@ -1,4 +1,4 @@
-"""The 6-state family scan (:mod:`aircraft.identification.six_state_scan`) on exact data.
+"""The 6-state family scan (:mod:`studies.analysis.six_state_scan`) on exact data.
 
 The data are computed here with numpy, independently of the structures:
 ``lambda/C = ((M s/Omega + Lbar)^-1 + D) exp(-s tau)`` elementwise, from a
@@ -14,11 +14,9 @@ cost, set by the structure, not by the residual.
 import numpy as np
 import pytest
 
-from aircraft.identification import Coaxial6State
-from aircraft.identification.six_state_scan import (A_PRIORI_MASSES, CROSS_ROTOR_FEEDTHROUGH, FEEDTHROUGH_NAMES,
-                                                     SIX_STATE_FAMILY, Coaxial6StateVariant, SixStateCandidate,
-                                                     plot_cyclic_pairs, six_state_scan)
-from aircraft.identification.structures import _PP_M11
+from aircraft.identification.structures import Coaxial6State
+from studies.analysis.six_state_scan import (A_PRIORI_MASSES, CROSS_ROTOR_FEEDTHROUGH, FEEDTHROUGH_NAMES, SIX_STATE_FAMILY, Coaxial6StateVariant, SixStateCandidate, plot_cyclic_pairs, six_state_scan)
+from aircraft.identification.structures.base import PITT_PETERS_M11
 from flightid import MeasuredResponse
 
 OMEGA = 23.7
@@ -57,12 +55,11 @@ def _data(d=D_TRUTH):
 
 
 def test_variant_without_feedthrough_is_eq_5_3():
-    from aircraft.identification import STRUCTURES
     plain = Coaxial6State().build(TRUTH, OMEGA).frequency_response(W)
     variant = Coaxial6StateVariant().build(TRUTH, OMEGA).frequency_response(W)
     np.testing.assert_allclose(variant, plain, rtol=1e-12, atol=1e-14)
-    # registered for identify_inflow, the default being Eq. 5.3 itself
-    registered = STRUCTURES["coaxial_6state_variant"]()
+    # the default is Eq. 5.3 itself
+    registered = Coaxial6StateVariant()
     assert registered.feedthrough == () and registered.a_priori == {}
     # with no D it offers Eq. 5.3's equation-error start (here: the exact data's, stable)
     assert [label for label, _ in registered.extra_starts(_data({}), OMEGA)] == ["equation-error M (1-10 rad/s)"]
@@ -82,10 +79,10 @@ def test_variant_feedthrough_matches_numpy_composition():
 def test_a_priori_values_are_held_and_fixed():
     st = Coaxial6StateVariant(a_priori=A_PRIORI_MASSES["collective"])
     built = st.build({**TRUTH, "m11": 9.0}, OMEGA)
-    assert built.values["m11"] == pytest.approx(_PP_M11) and built.values["m44"] == pytest.approx(_PP_M11)
+    assert built.values["m11"] == pytest.approx(PITT_PETERS_M11) and built.values["m44"] == pytest.approx(PITT_PETERS_M11)
     assert "m11" not in built.free_names and "m44" not in built.free_names
-    assert st.initial_values(_data(), 3)["m11"] == pytest.approx(_PP_M11)
-    assert st.spec()["a_priori"] == {"m11": pytest.approx(_PP_M11), "m44": pytest.approx(_PP_M11)}
+    assert st.initial_values(_data(), 3)["m11"] == pytest.approx(PITT_PETERS_M11)
+    assert st.spec()["a_priori"] == {"m11": pytest.approx(PITT_PETERS_M11), "m44": pytest.approx(PITT_PETERS_M11)}
 
 
 @pytest.mark.parametrize("kwargs, match", [
@@ -161,6 +158,6 @@ def test_scan_reduction_follows_the_guideline_thresholds():
     # the full fit's plus 2 per removed parameter
     cand = SixStateCandidate((1.0, 25.0), "collective", CROSS_ROTOR_FEEDTHROUGH)
     row = six_state_scan(_data(), OMEGA, [cand], starts={"truth": {**TRUTH, **D_TRUTH}}).table.iloc[0]
-    assert row.a_priori == "collective" and row.m11 == pytest.approx(_PP_M11)
+    assert row.a_priori == "collective" and row.m11 == pytest.approx(PITT_PETERS_M11)
     assert row.J_ave <= row.J_ave_full_fit + 2.0 * row.n_removed + 1e-9
     assert row.meets_target == _meets(row)

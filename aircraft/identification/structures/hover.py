@@ -1,4 +1,4 @@
-"""The dissertation's inflow model structures as library objects, in our rotor frames.
+"""The hover structures of the dissertation, in our rotor frames.
 
 Each structure knows its signals (swashplate controls swept, load and flap-rate
 inputs, inflow outputs), builds the :mod:`flightid` parametric structure
@@ -17,248 +17,20 @@ structure                   form                                                
 
 ``M`` multiplies d/dpsi (rotor-azimuth time, dimensionless, Eq. 5.3; Tables 4.1-4.2
 print ``M/Omega`` in seconds: divide by Omega); delays are in seconds. The frame
-conversion from the printed common frame is :mod:`aircraft.identification.frames`:
+conversion from the printed common frame is :mod:`aircraft.inflow.frames`:
 in our frames the hover roll/pitch symmetry ties the *cross-rotor* cosine terms
 to the sine terms with a minus sign (``m36 = -m25``, ``m63 = -m52``), while the
 dissertation's common frame ties them with a plus sign.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from aircraft.inflow.base import flap_rate_names, inflow_names, load_names
 from aircraft.inflow.published import fgc_state_names
 
-__all__ = ["InflowStructure", "SingleRotor3State", "Coaxial6State", "Coaxial12State",
-           "STRUCTURES", "get_structure", "low_frequency_gain", "low_frequency_points"]
+from .base import PITT_PETERS_M11, PITT_PETERS_M22, InflowStructure, _low_frequency_inverse
 
-_PP_M11 = 8.0 / (3.0 * math.pi)          # Pitt-Peters hover apparent mass (azimuth time)
-_PP_M22 = -16.0 / (45.0 * math.pi)
-
-
-def low_frequency_points(response, n_points, coherence_min=None, outputs=None, inputs=None):
-    """Indices of the ``n_points`` lowest frequencies, or lowest coherent ones.
-
-    With ``coherence_min`` None: the ``n_points`` lowest frequencies. Otherwise a point
-    qualifies when every element of the (``outputs`` x ``inputs``) block has coherence
-    >= ``coherence_min``. A sweep's lowest points usually do; a multisine's lowest
-    harmonics often do not, and a start taken there is noise (the default-wake
-    multisine started from its three lowest points, coherence 0.15-0.5 in the cyclic
-    cross pairs, and ended at J_ave 1553). Where fewer than ``n_points`` points
-    qualify, the ``n_points`` points of highest worst-element coherence in the lower
-    half of the band are used instead, so a start always exists.
-
-    Parameters
-    ----------
-    response : flightid.MeasuredResponse
-        Measured response with coherence (frequencies ascending).
-    n_points : int
-        Number of points wanted (>= 1).
-    coherence_min : float or None
-        Coherence threshold in [0, 1), or None for the lowest points whatever their
-        coherence.
-    outputs, inputs : list of str, optional
-        The block to check; default every element.
-
-    Returns
-    -------
-    numpy.ndarray of int
-        Ascending frequency indices, ``n_points`` of them (fewer only when the
-        response has fewer points).
-    """
-    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 1:
-        raise ValueError(f"n_points must be an integer >= 1, got {n_points!r}")
-    n_omega = response.frdata.shape[-1]
-    if coherence_min is None:
-        return np.arange(min(n_points, n_omega))
-    if not 0.0 <= float(coherence_min) < 1.0:
-        raise ValueError(f"coherence_min must lie in [0, 1) or be None, got {coherence_min!r}")
-    coh = response.coherence
-    if outputs is not None or inputs is not None:
-        oi = [response.output_labels.index(o) for o in (outputs or response.output_labels)]
-        ii = [response.input_labels.index(i) for i in (inputs or response.input_labels)]
-        coh = coh[np.ix_(oi, ii)]
-    worst = coh.reshape(-1, coh.shape[-1]).min(axis=0)
-    good = np.flatnonzero(worst >= coherence_min)
-    if good.size >= n_points:
-        return good[:n_points]
-    half = max(n_points, worst.size // 2)
-    return np.sort(np.argsort(-worst[:half], kind="stable")[:n_points])
-
-
-def low_frequency_gain(response, n_points, coherence_min=None, outputs=None, inputs=None):
-    """Real part of the measured response averaged over its lowest coherent points.
-
-    The quasi-steady gain of a block (``lambda = G0 C`` as s -> 0), from the points of
-    :func:`low_frequency_points`; the mean over several of them averages the record's
-    low-frequency noise.
-
-    Parameters
-    ----------
-    response : flightid.MeasuredResponse
-        Measured response with coherence.
-    n_points : int
-        Points averaged.
-    coherence_min : float or None
-        As for :func:`low_frequency_points` (None: the lowest points).
-    outputs, inputs : list of str, optional
-        The block; default the whole response.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``G0``, shape (n_outputs, n_inputs) of the block, in the response's units.
-    """
-    idx = low_frequency_points(response, n_points, coherence_min, outputs, inputs)
-    data = response.frdata
-    if outputs is not None or inputs is not None:
-        oi = [response.output_labels.index(o) for o in (outputs or response.output_labels)]
-        ii = [response.input_labels.index(i) for i in (inputs or response.input_labels)]
-        data = data[np.ix_(oi, ii)]
-    return np.real(data[:, :, idx].mean(axis=2))
-
-
-def _low_frequency_inverse(lam_over_c, n_points, outputs=None, inputs=None, coherence_min=None):
-    """Inverse of :func:`low_frequency_gain`: the quasi-steady Lbar (``lambda = Lbar^-1 C``)."""
-    g0 = low_frequency_gain(lam_over_c, n_points, coherence_min, outputs=outputs, inputs=inputs)
-    try:
-        return np.linalg.inv(g0)
-    except np.linalg.LinAlgError as err:
-        raise np.linalg.LinAlgError("measured low-frequency lambda/C is singular: "
-                                    "no data-driven start") from err
-
-
-class InflowStructure:
-    """Base class of the structures (see the module table).
-
-    Parameters
-    ----------
-    frame : {"rotor", "printed"}
-        Frame of the parameters: ``"rotor"`` (default) or ``"printed"``.
-
-    Attributes
-    ----------
-    key : str
-        Short name (``"single_rotor_3state"``, ...), used in files and hashes.
-    rotors : tuple of str
-    controls : list of str
-        Swashplate controls swept by the pipeline (one sweep each).
-    frame : {"rotor", "printed"}
-        ``"rotor"``: our per-rotor frames (default); ``"printed"``: the
-        dissertation's common frame (for comparisons only).
-    """
-
-    key = ""
-    rotors = ("",)
-    form = "mltau"
-    uses_flap_rates = False
-
-    def __init__(self, frame="rotor"):
-        if frame not in ("rotor", "printed"):
-            raise ValueError(f"frame must be 'rotor' or 'printed', got {frame!r}")
-        self.frame = frame
-
-    # -- signals ---------------------------------------------------------------
-    @property
-    def controls(self):
-        return [f"{c}{'_' + r if r else ''}" for r in self.rotors for c in ("theta0", "theta1s", "theta1c")]
-
-    @property
-    def excitations(self):
-        """Controls the pipeline sweeps, one record each: the swashplate controls and,
-        for a structure with flap-rate inputs, every rotor's prescribed tip-path-plane
-        inputs ``beta1s``, ``beta1c`` (§6.3), so that the block joint input-output
-        (Eq. 4.11) has one independent excitation per load and flap-rate input."""
-        if not self.uses_flap_rates:
-            return list(self.controls)
-        return list(self.controls) + [f"{c}{'_' + r if r else ''}" for r in self.rotors
-                                      for c in ("beta1s", "beta1c")]
-
-    def staged_plan(self):
-        """The :class:`flightid.Stage` plan of the fit (§6.4.3), or None for one fit of
-        every parameter (the small structures)."""
-        return None
-
-    #: Extra keyword arguments of every :func:`flightid.fit` of this structure.
-    fit_options: dict = {}
-
-    def extra_starts(self, lam_over_c, omega):
-        """Further data-driven starts the pipeline fits beside :meth:`initial_values`.
-
-        Parameters
-        ----------
-        lam_over_c : flightid.MeasuredResponse
-        omega : float
-            Rotor speed [rad/s].
-
-        Returns
-        -------
-        list of (str, dict)
-            ``(label, parameter values)``; none by default.
-        """
-        return []
-
-    @property
-    def loads(self):
-        return load_names(self.rotors)
-
-    @property
-    def rates(self):
-        return flap_rate_names(self.rotors) if self.uses_flap_rates else []
-
-    @property
-    def inputs(self):
-        """Model inputs: loads, then flap rates (canonical order of :class:`IdentifiedInflow`)."""
-        return self.loads + self.rates
-
-    @property
-    def outputs(self):
-        return inflow_names(self.rotors)
-
-    #: Parameters the automatic reduction never removes: the diagonal apparent
-    #: masses (or near-wake poles). Without one a state has no dynamics of its own;
-    #: on the coarse coaxial wake removing m22 left the cyclic M with det 5e-5 and
-    #: a 7600 1/s pole.
-    protected = ()
-
-    def spec(self):
-        """What identifies this structure in a settings hash (dict of str)."""
-        return {"key": self.key, "frame": self.frame, "form": self.form, "protected": list(self.protected)}
-
-    def __repr__(self):
-        return f"{type(self).__name__}(frame={self.frame!r})"
-
-    # -- to implement ----------------------------------------------------------
-    def build(self, initial, omega, fixed=()):
-        """The :mod:`flightid` structure with ``initial`` values, ``omega`` [rad/s]."""
-        raise NotImplementedError
-
-    def initial_values(self, lam_over_c, n_points=3, coherence_min=None):
-        """Data-driven start from measured lambda/C (a :class:`flightid.MeasuredResponse`)."""
-        raise NotImplementedError
-
-    def published_values(self, model):
-        """Parameter values of a printed model (converted to ``self.frame``)."""
-        raise NotImplementedError
-
-    def to_inflow(self, values, omega, *, loads_ref=None, inflow_ref=None, pade_order=2, name=None):
-        """An :class:`aircraft.inflow.IdentifiedInflow` at parameter ``values``."""
-        from aircraft.inflow import IdentifiedInflow
-        mats = self.build(values, omega).matrices()
-        name = name or f"identified {self.key}"
-        if self.form == "mltau":
-            return IdentifiedInflow.from_matrices(mats["M"], mats["L"], mats["tau"], omega=omega,
-                                                  rotors=self.rotors, time="azimuth", loads_ref=loads_ref,
-                                                  inflow_ref=inflow_ref, pade_order=pade_order, name=name)
-        c = self.build(values, omega).C
-        # FGCStructure with omega: x' = F x + G u in d/dpsi; seconds: Omega F, Omega G
-        return IdentifiedInflow.from_fgc(omega * mats["F"], omega * mats["G"], c, rotors=self.rotors,
-                                         input_order=self.inputs, loads_ref=loads_ref,
-                                         inflow_ref=inflow_ref, name=name, tau=mats.get("tau"),
-                                         pade_order=pade_order)
-
+__all__ = ["SingleRotor3State", "Coaxial6State", "Coaxial12State"]
 
 class SingleRotor3State(InflowStructure):
     """3-state single rotor in hover (Tables 4.1-4.2; Pitt-Peters form, §4.3).
@@ -287,7 +59,7 @@ class SingleRotor3State(InflowStructure):
         """``l11``, ``l22`` from the inverted low-frequency lambda/C (the cyclic value
         is the mean of the 1s and 1c diagonals); Pitt-Peters ``M``; 20 ms delays."""
         l0 = _low_frequency_inverse(lam_over_c, n_points, coherence_min=coherence_min)
-        return {"m11": _PP_M11, "m22": _PP_M22, "l11": float(l0[0, 0]),
+        return {"m11": PITT_PETERS_M11, "m22": PITT_PETERS_M22, "l11": float(l0[0, 0]),
                 "l22": float(0.5 * (l0[1, 1] + l0[2, 2])), "t11": 0.02, "t22": 0.02}
 
     def published_values(self, model):
@@ -295,10 +67,8 @@ class SingleRotor3State(InflowStructure):
         return {"m11": float(m[0, 0]), "m22": float(m[1, 1]), "l11": float(model.L[0, 0]),
                 "l22": float(model.L[1, 1]), "t11": float(model.tau[0, 0]), "t22": float(model.tau[1, 1])}
 
-
 #: The 24 free parameters of §5.3 (rows 3 and 6 repeat 2 and 5 by ties).
 _COAX6_FREE = [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)]
-
 
 class Coaxial6State(InflowStructure):
     """6-state coaxial rotor in hover (Eq. 5.3, the 24-parameter structure of §5.3).
@@ -343,7 +113,7 @@ class Coaxial6State(InflowStructure):
         20 ms (own rotor) and 50 ms (cross). A start from the printed Eq. 5.3 values
         ended in a degenerate, near-singular ``M`` (J_ave 1300) in our wake."""
         l0 = _low_frequency_inverse(lam_over_c, n_points, coherence_min=coherence_min)
-        init = {"m11": _PP_M11, "m44": _PP_M11, "m22": _PP_M22, "m55": _PP_M22, "m14": 0.0, "m41": 0.0,
+        init = {"m11": PITT_PETERS_M11, "m44": PITT_PETERS_M11, "m22": PITT_PETERS_M22, "m55": PITT_PETERS_M22, "m14": 0.0, "m41": 0.0,
                 "m25": 0.05, "m52": 0.05, "t11": 0.02, "t22": 0.02, "t44": 0.02, "t55": 0.02,
                 "t14": 0.05, "t41": 0.05, "t25": 0.05, "t52": 0.05}
         for i, j in _COAX6_FREE:
@@ -360,7 +130,7 @@ class Coaxial6State(InflowStructure):
         is unstable (the lower rotor's collective mass comes out at -0.18) and is not
         offered; a fit from an unstable start is refused anyway.
         """
-        from .starts import equation_error_start
+        from ..starts import equation_error_start
         try:
             values = equation_error_start(self, lam_over_c, omega)
         except (ValueError, np.linalg.LinAlgError):
@@ -380,7 +150,6 @@ class Coaxial6State(InflowStructure):
                 vals[f"{name}{i}{j}"] = float(mat[i - 1, j - 1])
         return vals
 
-
 # Eq. 6.3's pattern, 1-based (row, column) in Eq. 6.2's state and input order
 # (inputs CT_U, CL_U, b1s_U, CM_U, b1c_U, CT_L, CL_L, b1s_L, CM_L, b1c_L). The
 # printed G has 11 columns; its rows 6 and 12 put the far-wake 1c flap-rate term
@@ -388,7 +157,6 @@ class Coaxial6State(InflowStructure):
 # these entries, +0.255 and +0.330, in column 10).
 _EQ62_INPUTS = ["CT_U", "CL_U", "beta1s_dot_U", "CM_U", "beta1c_dot_U",
                 "CT_L", "CL_L", "beta1s_dot_L", "CM_L", "beta1c_dot_L"]
-
 
 def _g_free():
     """G's free entries: per rotor's rows (lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF):
@@ -403,7 +171,6 @@ def _g_free():
         out |= {(r0 + 6, 5), (r0 + 6, 10)}
     return sorted(out)
 
-
 def _f_free():
     out = set()
     for r0 in (0, 6):
@@ -413,14 +180,12 @@ def _f_free():
                 out |= {(r0 + h + 1, c0 + h + 1), (r0 + h + 2, c0 + h + 1), (r0 + h + 2, c0 + h + 2)}
     return sorted(out)
 
-
 _G_FREE = _g_free()
 _F_FREE = _f_free()
 # 1s <-> 1c partners (1-based, Eq. 6.2 orders) for the hover symmetry ties
 _STATE_PARTNER = {3: 5, 4: 6, 9: 11, 10: 12}
 _INPUT_PARTNER = {2: 4, 3: 5, 7: 9, 8: 10}
 _UPPER_STATES, _UPPER_INPUTS = set(range(1, 7)), set(range(1, 6))
-
 
 class Coaxial12State(InflowStructure):
     """12-state near/far-wake coaxial model with flap-rate inputs (Eqs. 6.2-6.3, 6.8-6.9).
@@ -586,7 +351,7 @@ class Coaxial12State(InflowStructure):
         0.01 so the lambda/beta_dot responses are not identically zero.
         """
         l0 = _low_frequency_inverse(lam_over_c, n_points, inputs=list(self.loads), coherence_min=coherence_min)
-        m = np.array([_PP_M11, _PP_M22, _PP_M22] * 2)
+        m = np.array([PITT_PETERS_M11, PITT_PETERS_M22, PITT_PETERS_M22] * 2)
         vals = {n: 0.0 for n in self.parameter_names()}
         near = {state: k for k, state in enumerate(self._NEAR)}
         cols = {col: k for k, col in enumerate(self._LOAD_COLS)}
@@ -620,7 +385,7 @@ class Coaxial12State(InflowStructure):
         3. those fixed, the far-wake states (poles, near-to-far couplings, gains);
         4. every parameter together.
         """
-        from flightid import Stage
+        from flightid.staging import Stage
         near_f = [(i, j) for i, j in _F_FREE if i in self._NEAR and j in self._NEAR]
         near_g = [(i, j) for i, j in self._g_free if i in self._NEAR and "beta" not in _EQ62_INPUTS[j - 1]]
         flap_g = [(i, j) for i, j in self._g_free if i in self._NEAR and "beta" in _EQ62_INPUTS[j - 1]]
@@ -659,40 +424,3 @@ class Coaxial12State(InflowStructure):
                 vals[f"g{i}_{j}"] = float(G[i - 1, j - 1])
         return vals
 
-
-#: The structures by key.
-STRUCTURES = {"single_rotor_3state": SingleRotor3State, "coaxial_6state": Coaxial6State,
-              "coaxial_12state": Coaxial12State,
-              # Eq. 6.2 plus the 6-state's lambda/C delays: the structure shipped from our wake
-              "coaxial_12state_delays": lambda: Coaxial12State(delays=True),
-              # the same with the cyclic far wake fed by the loads (in our wake the lower
-              # rotor's cyclic inflow reverses sign slowly after a cyclic step)
-              "coaxial_12state_far_loads": lambda: Coaxial12State(delays=True, far_wake_loads=True)}
-
-
-def get_structure(structure):
-    """A structure instance from an instance, a class or a key of :data:`STRUCTURES`.
-
-    Parameters
-    ----------
-    structure : InflowStructure, type or str
-        An instance (returned as is), a subclass (instantiated with defaults)
-        or a key of :data:`STRUCTURES`.
-
-    Returns
-    -------
-    InflowStructure
-
-    Raises
-    ------
-    ValueError
-        If ``structure`` is none of these.
-    """
-    if isinstance(structure, InflowStructure):
-        return structure
-    if isinstance(structure, type) and issubclass(structure, InflowStructure):
-        return structure()
-    if isinstance(structure, str) and structure in STRUCTURES:
-        return STRUCTURES[structure]()
-    raise ValueError(f"unknown inflow structure {structure!r}; use one of {sorted(STRUCTURES)} "
-                     "or an InflowStructure")

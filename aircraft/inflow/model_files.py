@@ -8,13 +8,12 @@ the settings and their hash, and the code/schema version.
 
 Shipped models live in ``aircraft/data/models/<name>.json`` (package data);
 :func:`load_record` / :meth:`aircraft.inflow.IdentifiedInflow.from_file` take a
-path or such a name. ``python -m aircraft.identification.regenerate NAME``
-rebuilds one (see :mod:`aircraft.identification.regenerate`).
+path or such a name. ``rotorwake shipped-models NAME``
+rebuilds one (see :mod:`aircraft.identification.shipped`).
 """
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -22,8 +21,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from aircraft.provenance import jsonable as _jsonable
+
 __all__ = ["SCHEMA", "ModelRecord", "ModelFileError", "load_record", "shipped_models",
-           "shipped_model_path", "settings_hash"]
+           "shipped_model_path"]
 
 #: File schema; bump when the layout changes (readers check it).
 SCHEMA = "rotorwake-id/inflow-model/1"
@@ -31,43 +32,6 @@ SCHEMA = "rotorwake-id/inflow-model/1"
 
 class ModelFileError(ValueError):
     """Raised for a missing, unreadable or inconsistent model file."""
-
-
-def _jsonable(x):
-    """Numbers, arrays and tables to plain JSON (NaN/inf -> None)."""
-    if isinstance(x, dict):
-        return {str(k): _jsonable(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return _jsonable(x.tolist())
-    if isinstance(x, pd.DataFrame):
-        return _jsonable(x.to_dict(orient="records"))
-    if isinstance(x, (np.bool_, bool)):
-        return bool(x)
-    if isinstance(x, (np.integer,)):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        v = float(x)
-        return v if math.isfinite(v) else None
-    return x
-
-
-def settings_hash(payload):
-    """SHA-256 (first 16 hex digits) of a JSON-able payload in canonical form.
-
-    Parameters
-    ----------
-    payload : dict
-        JSON-able content (arrays allowed); serialised with sorted keys.
-
-    Returns
-    -------
-    str
-    """
-    import hashlib
-    text = json.dumps(_jsonable(payload), sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
 def _table(rows):
@@ -143,23 +107,6 @@ class ModelRecord:
         return float(self.cost_table.J.mean()) if "J" in self.cost_table else float("nan")
 
     # -- conversion ------------------------------------------------------------------
-    def to_inflow(self, pade_order=None):
-        """The model as an :class:`aircraft.inflow.IdentifiedInflow` about its trim."""
-        import control
-        from aircraft.inflow import IdentifiedInflow
-        m = self.matrices
-        kw = dict(loads_ref=self.loads_ref, inflow_ref=self.inflow_ref, name=self.name)
-        if self.form == "mltau":
-            return IdentifiedInflow.from_matrices(m["M"], m["L"], m["tau"], omega=self.omega, rotors=self.rotors,
-                                                  time=self.time, pade_order=pade_order or self.pade_order, **kw)
-        if self.form == "fgc":
-            return IdentifiedInflow.from_fgc(m["F"], m["G"], m["C"], rotors=self.rotors,
-                                             input_order=self.inputs, tau=m.get("tau"),
-                                             pade_order=pade_order or self.pade_order, **kw)
-        sys = control.ss(m["A"], m["B"], m["C"], np.zeros((m["C"].shape[0], m["B"].shape[1])),
-                         inputs=self.inputs, outputs=self.outputs)
-        return IdentifiedInflow(sys, self.rotors, **kw)
-
     def to_dict(self):
         return _jsonable({
             "schema": SCHEMA, "name": self.name, "description": self.description, "form": self.form,

@@ -24,7 +24,7 @@ Frames
 No entry of the pattern is tied to another, so the pattern is the same in the
 dissertation's common frame and in our per-rotor frames; only the *values*
 differ. Between the two every signal is multiplied by ``s = +-1``
-(:mod:`aircraft.identification.frames`: ``-1`` for the lower rotor's lateral
+(:mod:`aircraft.inflow.frames`: ``-1`` for the lower rotor's lateral
 signals ``lam1sN_L, lam1sF_L, CL_L``), ``F_o = T_x F_d T_x``,
 ``G_o = T_x G_d T_u``, ``C_o = C_d`` (the summing matrix is invariant):
 :meth:`CoaxialForward12State.published_values` converts the printed
@@ -42,7 +42,7 @@ import numpy as np
 
 from aircraft.inflow.published import fgc_state_names
 
-from .structures import InflowStructure, _low_frequency_inverse, low_frequency_gain
+from .base import (InflowStructure, _low_frequency_inverse, low_frequency_gain)
 
 __all__ = ["CoaxialForward12State", "F_PATTERN", "G_PATTERN"]
 
@@ -207,12 +207,12 @@ class CoaxialForward12State(InflowStructure):
         dict
             Parameter name -> value.
         """
-        from .structures import _PP_M11, _PP_M22
+        from .base import PITT_PETERS_M11, PITT_PETERS_M22
         g0 = low_frequency_gain(lam_over_c, n_points, coherence_min, outputs=list(self.outputs),
                                 inputs=list(self.loads))
         l0 = _low_frequency_inverse(lam_over_c, n_points, outputs=list(self.outputs), inputs=list(self.loads),
                                     coherence_min=coherence_min)
-        m = np.array([_PP_M11, _PP_M22, _PP_M22] * 2)
+        m = np.array([PITT_PETERS_M11, PITT_PETERS_M22, PITT_PETERS_M22] * 2)
         a = np.abs(np.diag(l0) / m)
         vals = {n: 0.0 for n in self.parameter_names()}
         for k in range(6):

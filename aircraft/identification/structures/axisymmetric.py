@@ -33,14 +33,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from .structures import _PP_M11, Coaxial6State, _low_frequency_inverse
+from .base import PITT_PETERS_M11, _low_frequency_inverse
+from .hover import Coaxial6State
 
 __all__ = ["Coaxial6StateAxisymmetric", "PITT_PETERS_COLLECTIVE_MASS"]
 
 #: Pitt-Peters' hover apparent mass 8/(3 pi) (azimuth time) on each rotor's own
 #: collective inflow: the a priori value of the scale our nearly rank-one collective
 #: lambda/C block cannot fix (``six_state_diagnostics`` measures that rank)
-PITT_PETERS_COLLECTIVE_MASS = {"m11": _PP_M11, "m44": _PP_M11}
+PITT_PETERS_COLLECTIVE_MASS = {"m11": PITT_PETERS_M11, "m44": PITT_PETERS_M11}
 
 
 class Coaxial6StateAxisymmetric(Coaxial6State):
@@ -229,13 +230,3 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
         vals = super().published_values(model)
         vals.update({f"{p}{ij}": 0.0 for p in "ml" for ij in ("23", "56", "26", "53")})
         return vals
-
-
-
-# a key of the structure registry, so that settings, stored models and get_structure know it
-from .structures import STRUCTURES  # noqa: E402
-
-STRUCTURES[Coaxial6StateAxisymmetric.key] = Coaxial6StateAxisymmetric
-# the structure shipped as coaxial_hover_6state_axisymmetric (the recipe in regenerate)
-STRUCTURES["coaxial_6state_axisymmetric_pp_collective_mass"] = lambda: Coaxial6StateAxisymmetric(
-    a_priori=PITT_PETERS_COLLECTIVE_MASS)

@@ -44,8 +44,7 @@ from flightid import FGCStructure
 from aircraft.inflow.base import rotor_suffix
 from aircraft.inflow.tilt import TILT_HARMONICS, tilt_names
 
-from .structures import STRUCTURES
-from .twelve_state_variants import PITT_PETERS_COLLECTIVE_GAIN, Coaxial12StateConstrained
+from .constrained import (PITT_PETERS_COLLECTIVE_GAIN, Coaxial12StateConstrained)
 
 __all__ = ["Coaxial12StateTilt", "TiltFGCStructure", "TILT_GAIN_NAMES", "ON_AXIS_TILT_GAINS", "TILT_VARIANT",
            "tilt_inflow_from_record"]
@@ -59,7 +58,7 @@ TILT_GAIN_NAMES = tuple(f"{k}_{r}{q}" for r in "UL" for q in "UL" for k in ("kon
 ON_AXIS_TILT_GAINS = tuple(n for n in TILT_GAIN_NAMES if n.startswith("kon"))
 
 #: The constrained structure the tilt gains are added to: variant 4 of
-#: :data:`~aircraft.identification.twelve_state_variants.VARIANTS` (first-order
+#: :data:`~studies.analysis.twelve_state_variants.VARIANTS` (first-order
 #: collective, its gain held at Pitt-Peters', no far-far cross-rotor cyclic coupling)
 #: with two more freedoms removed, measured on our wake's data set
 #: (``rotorwake twelve-state-variants``):
@@ -222,7 +221,6 @@ def _tilt_inflow(F, G, C, tau, *, rotors, inputs, loads_ref, inflow_ref, name, p
     return TiltInflow.from_inflow(base, F[:n, n:], tilt_names(rotors), inflow_block=F[:n, :n])
 
 
-STRUCTURES[Coaxial12StateTilt.key] = Coaxial12StateTilt
 
 
 def tilt_inflow_from_record(record, pade_order=None):
@@ -245,7 +243,7 @@ def tilt_inflow_from_record(record, pade_order=None):
     ModelFileError
         A record of another structure, or one whose integrator rows are not zero.
     """
-    from .store import ModelFileError, load_record
+    from aircraft.inflow.model_files import ModelFileError, load_record
     rec = load_record(record) if not hasattr(record, "matrices") else record
     key = (rec.settings.get("structure") or {}).get("key")
     if key != Coaxial12StateTilt.key:

@@ -1,33 +1,31 @@
-"""Regenerate the shipped model files: ``python -m aircraft.identification.regenerate NAME``.
+"""Recipes of the shipped model files, and their regeneration.
 
 Each shipped model has a *recipe* here (configuration, flight condition,
 structure, trim thrust, :class:`IdentificationSettings`). Regenerating runs
 :func:`aircraft.identification.identify_inflow` with it (wake runs cached in
 ``.cache/wake``) and writes ``aircraft/data/models/NAME.json``. The settings hash
-in each file is what ``tests/aircraft/identification/test_model_store.py`` compares with the recipe, so a
-change of any input (wake code version, settings, pipeline) shows up as a stale
-file instead of a silently outdated model.
+in each file is compared with its recipe's by :func:`stale_models` (and by the
+tests), so a change of any input (wake code version, settings, pipeline) shows up
+as a stale file instead of a silently outdated model.
 
-Usage::
+From the command line::
 
-    python -m aircraft.identification.regenerate --list
-    python -m aircraft.identification.regenerate uh60_hover_3state        # ~5 min on 2 cores
-    python -m aircraft.identification.regenerate coaxial_hover_6state     # ~25 min on 2 cores (wake runs)
-    python -m aircraft.identification.regenerate coaxial_hover_12state    # ~40 min, or the fit only once cached
-    python -m aircraft.identification.regenerate coaxial_hover_6state_axisymmetric   # the 6-state's wake runs
-    python -m aircraft.identification.regenerate --published              # the printed models
-    python -m aircraft.identification.regenerate --check                  # which files are stale
+    rotorwake shipped-models --list
+    rotorwake shipped-models uh60_hover_3state        # ~5 min on 2 cores
+    rotorwake shipped-models coaxial_hover_6state     # ~25 min on 2 cores (wake runs)
+    rotorwake shipped-models coaxial_hover_12state    # ~40 min, or the fit only once cached
+    rotorwake shipped-models --published              # the printed models
+    rotorwake shipped-models --check                  # which files are stale
 """
 from __future__ import annotations
 
-import argparse
 from dataclasses import dataclass, field
 
 from .pipeline import IdentificationSettings, identification_hash, identify_inflow
-from .store import ModelRecord, load_record, settings_hash, shipped_model_path, shipped_models
-from . import tilt_inputs  # noqa: F401  (registers the coaxial_12state_tilt structure)
+from aircraft.inflow.model_files import ModelRecord, load_record, shipped_model_path, shipped_models
+from aircraft.provenance import settings_hash
 
-__all__ = ["Recipe", "RECIPES", "PUBLISHED_FILES", "published_record", "regenerate", "stale_models", "main"]
+__all__ = ["Recipe", "RECIPES", "PUBLISHED_FILES", "published_record", "regenerate", "stale_models"]
 
 
 @dataclass(frozen=True)
@@ -73,13 +71,13 @@ RECIPES = {
         "(default resolution)"),
     # the same ten sweeps as coaxial_hover_12state; the inflow also answers each rotor's
     # tip-path-plane tilt (held records of our wake: the upper blades move through the
-    # lower rotor's induced-velocity gradient), see aircraft.identification.tilt_inputs
+    # lower rotor's induced-velocity gradient), see aircraft.identification.structures.tilt
     "coaxial_hover_12state_tilt": Recipe(
         "coaxial_compound", "coaxial_12state_tilt", 0.0053 + 0.0043,
         "Coaxial compound (Table B.1), hover, system C_T 0.0096: 12-state near/far-wake F/G/C model "
         "with flap-rate inputs and tip-path-plane tilt inputs (four integrator states of the flap "
         "rates feeding the near-wake cyclic rows; fly it with "
-        "aircraft.identification.tilt_inputs.tilt_inflow_from_record), first-order collective with "
+        "aircraft.identification.structures.tilt.tilt_inflow_from_record), first-order collective with "
         "Pitt-Peters' gain, flap rates into the near wake only, our rotor frames; fitted in stages "
         "from six swashplate and four prescribed tip-path-plane sweeps of our free-vortex wake "
         "(default resolution)"),
@@ -125,11 +123,11 @@ def published_record(key):
     else:
         form, mats = "mltau", {"M": model.M, "L": model.L, "tau": model.tau}
         inputs = list(model.input_names)
-    payload = {"printed": key, "matrices": mats, "frame_conversion": "aircraft.identification.frames/1"}
+    payload = {"printed": key, "matrices": mats, "frame_conversion": "aircraft.inflow.frames/1"}
     return ModelRecord(name=key, form=form, rotors=model.rotors, omega=model.omega, matrices=mats,
                        inputs=inputs, outputs=list(model.output_names), loads_ref=ref.loads_ref,
                        inflow_ref=ref.inflow_ref, frame="rotor", time=getattr(model, "time", "azimuth"),
-                       settings=payload, settings_hash=settings_hash(payload),
+                       settings=payload, settings_hash=settings_hash(payload, digits=16),
                        provenance={"source": model.source, "printed_name": printed.name,
                                    "reference_inflow": "momentum steady state (IdentifiedInflow.from_published)"},
                        description=f"{printed.name}: printed in the dissertation (reference data, not our "
@@ -192,40 +190,3 @@ def stale_models():
         if rec.settings_hash != want:
             out[name] = (rec.settings_hash, want)
     return out
-
-
-def main(argv=None):
-    """Command line: list, check or regenerate shipped model files.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        Command-line arguments (default ``sys.argv[1:]``): model names, and
-        ``--list``, ``--published``, ``--check``, ``--jobs N``, ``--cache DIR``.
-    """
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("names", nargs="*", help="models to regenerate")
-    parser.add_argument("--list", action="store_true", help="list recipes and shipped files")
-    parser.add_argument("--published", action="store_true", help="(re)write the printed models' files")
-    parser.add_argument("--check", action="store_true", help="report stale shipped files")
-    parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--cache", default="default", help="wake run cache folder (default: $ROTORWAKE_CACHE_DIR, else .cache/wake)")
-    args = parser.parse_args(argv)
-    if args.list:
-        print("recipes:", ", ".join(sorted(RECIPES)))
-        print("published:", ", ".join(sorted(PUBLISHED_FILES)))
-        print("shipped:", ", ".join(shipped_models()))
-    if args.check:
-        stale = stale_models()
-        print("stale:" if stale else "all shipped models match their recipes",
-              *(f"{k} (file {a}, recipe {b})" for k, (a, b) in stale.items()))
-    names = list(args.names) + (sorted(PUBLISHED_FILES) if args.published else [])
-    for name in names:
-        out = regenerate(name, n_jobs=args.jobs, cache_dir=args.cache)
-        if hasattr(out, "summary"):
-            print(out.summary())
-        print(f"wrote {shipped_model_path(name)}")
-
-
-if __name__ == "__main__":
-    main()

@@ -23,7 +23,7 @@ surface's points, divided by the tip speed Omega R.
          the TIC of the zero-input run (the wake's own unsteadiness)
 
 This module holds the model (surfaces, settings, the Eq. 2.39/2.40 structure and
-its fit, the wake-exposure geometry); :mod:`aircraft.identification.off_rotor_identify`
+its fit, the wake-exposure geometry); :mod:`aircraft.identification.off_rotor.identify`
 runs it on the free wake (:func:`identify_off_rotor`) and holds the results.
 
 Whether the tail sits in the wake is judged from the wake's skew
@@ -34,9 +34,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 import pandas as pd
+
+from ..excitation import ExcitationSettings
 
 __all__ = ["OffRotorError", "OffRotorSurface", "OffRotorSettings", "horizontal_tail", "wing_under_hub",
            "gain_delay_structure", "fit_off_rotor", "wake_exposure", "INFLOW_STATES", "VELOCITY_COMPONENTS",
@@ -238,85 +241,52 @@ def gain_delay_structure(form, initial=None, *, fixed=(), outputs=None):
 
 
 @dataclass(frozen=True)
-class OffRotorSettings:
+class OffRotorSettings(ExcitationSettings):
     """Settings of :func:`identify_off_rotor` (SI units, radians).
+
+    The wake records and the fit band are those of
+    :class:`~aircraft.identification.excitation.ExcitationSettings`, with a fit band of
+    1-5 rad/s by default (the flight-dynamics band of §4.6); added here:
 
     Parameters
     ----------
-    wake : WakeSettings, optional
-        Free-wake resolution (default :class:`aircraft.wake.WakeSettings`).
     controls : tuple of str
         Swashplate controls swept, one sweep each (three independent excitations
         for the three inflow states of the joint input-output).
-    sweep_s : float
-        Length of each frequency sweep [s].
-    amplitude : float
-        Sweep amplitude [rad].
-    w_min, w_max : float
-        Sweep band and response band [rad/s].
-    fit_range : (float, float)
-        Band of the fit [rad/s]; 1-5 rad/s is the flight-dynamics band of §4.6.
-    doublet_amplitude, doublet_s, pulse_width : float
-        Verification doublets [rad], record [s], pulse [s].
     doublet_controls : tuple of str
         Controls with a verification doublet each.
-    noise_floor_s : float
-        Zero-input run [s]: its mean is the trim reference of every signal and its
-        TIC the wake's noise floor.
-    n_omega : int
-        Frequencies per response in the cost (CIFER: 20).
-    coherence_min : float
-        A gain is fitted only if its response reaches this coherence on 5+ points
-        of the fit band; the others are fixed at zero.
     starts : int
         Starts of the fit (the data-driven start and seeded scatterings of it).
-    pade_order : int
-        Padé order of the delays in the verification model.
+
+    Notes
+    -----
+    The zero-input run's mean is the trim reference of every signal and its TIC the
+    wake's noise floor; a gain is fitted only if its response reaches
+    ``coherence_min`` on 5+ points of the fit band (the others are fixed at zero).
+
+    Examples
+    --------
+    >>> OffRotorSettings().fit_range
+    (1.0, 5.0)
     """
 
-    wake: object = None
-    controls: tuple = ("theta0", "theta1s", "theta1c")
-    sweep_s: float = 45.0
-    amplitude: float = 0.02
-    w_min: float = 0.7
-    w_max: float = 30.0
+    error: ClassVar[type] = OffRotorError
+
     fit_range: tuple = (1.0, 5.0)
-    doublet_amplitude: float = 0.05
-    doublet_s: float = 4.0
-    pulse_width: float = 0.5
+    controls: tuple = ("theta0", "theta1s", "theta1c")
     doublet_controls: tuple = ("theta0", "theta1s", "theta1c")
-    noise_floor_s: float = 4.0
-    n_omega: int = 20
-    coherence_min: float = 0.6
     starts: int = 4
-    pade_order: int = 2
 
     def __post_init__(self):
-        if not (0 < self.w_min < self.w_max):
-            raise OffRotorError(f"need 0 < w_min < w_max [rad/s], got {self.w_min}, {self.w_max}")
-        try:
-            lo, hi = self.fit_range
-        except (TypeError, ValueError):
-            raise OffRotorError(f"fit_range must be (w_lo, w_hi) [rad/s], got {self.fit_range!r}") from None
-        if not (self.w_min <= lo < hi <= self.w_max):
-            raise OffRotorError(f"fit_range {self.fit_range} must lie inside (w_min, w_max) = "
-                                f"({self.w_min}, {self.w_max}) rad/s")
-        for name in ("sweep_s", "doublet_s", "noise_floor_s", "amplitude", "doublet_amplitude", "pulse_width"):
-            _positive(f"OffRotorSettings.{name}", getattr(self, name))
+        super().__post_init__()
         if len(self.controls) < len(INFLOW_STATES):
             raise OffRotorError(f"the joint input-output needs at least {len(INFLOW_STATES)} swept controls "
                                 f"(one per inflow state), got {self.controls!r}")
         if 2.0 * self.pulse_width + 1.0 > self.doublet_s:
             raise OffRotorError(f"doublet_s = {self.doublet_s} s is shorter than the doublet (1 s lead-in + "
                                 f"2 x pulse_width = {1.0 + 2 * self.pulse_width} s)")
-        if self.n_omega < 3 or self.starts < 1:
-            raise OffRotorError("n_omega must be >= 3 and starts >= 1")
-
-    @property
-    def wake_settings(self):
-        """The wake resolution used (the default :class:`aircraft.wake.WakeSettings` if none)."""
-        from aircraft.wake import WakeSettings
-        return self.wake if self.wake is not None else WakeSettings()
+        if isinstance(self.starts, bool) or not isinstance(self.starts, int) or self.starts < 1:
+            raise OffRotorError(f"starts must be an integer >= 1, got {self.starts!r}")
 
     def specs(self):
         """The wake records: sweeps, doublets and the zero-input run (:class:`aircraft.wake.SweepSpec`)."""

@@ -131,7 +131,7 @@ def printed_6state_structure(initial, omega):
     -------
     flightid.MLTauStructure
     """
-    from .structures import Coaxial6State
+    from .structures.hover import Coaxial6State
     return Coaxial6State("printed").build(initial, omega)
 
 
@@ -148,5 +148,5 @@ def printed_6state_values(model):
     dict
         Parameter name -> value.
     """
-    from .structures import Coaxial6State
+    from .structures.hover import Coaxial6State
     return Coaxial6State("printed").published_values(model)

@@ -1,6 +1,6 @@
 """Off-rotor models from the free wake: :func:`identify_off_rotor` and its results.
 
-Runs the recipe of :mod:`aircraft.identification.off_rotor` on
+Runs the recipe of :mod:`aircraft.identification.off_rotor.surfaces` on
 :func:`aircraft.wake.run_sweeps` records: sweeps, doublets and a zero-input run with
 the wake's velocity recorded at every surface point; the averaged velocities over
 the inflow states by joint input-output (Eq. 4.9); the Eq. 2.39/2.40 fit in the
@@ -14,37 +14,12 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-from .off_rotor import (_KEY, INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRotorSettings,
+from .surfaces import (_KEY, INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRotorSettings,
                         OffRotorSurface, fit_off_rotor, horizontal_tail, wake_exposure, wing_under_hub)
 
-__all__ = ["OffRotorModel", "OffRotorResult", "identify_off_rotor", "flight_condition"]
+__all__ = ["OffRotorModel", "OffRotorResult", "identify_off_rotor"]
 
 
-def flight_condition(config, mu, alpha=0.0):
-    """Wind-tunnel flight condition at advance ratio ``mu`` of the first rotor.
-
-    Parameters
-    ----------
-    config : aircraft.AircraftConfig
-    mu : float
-        Advance ratio V / (Omega R) [-], >= 0 (0: hover).
-    alpha : float
-        Shaft angle of attack [rad] (positive: disk tilted back).
-
-    Returns
-    -------
-    aircraft.wake.FlightCondition
-        Speed ``mu * (Omega R)`` [m/s].
-    """
-    from aircraft.wake import FlightCondition
-    if isinstance(mu, bool) or not isinstance(mu, (int, float)) or not math.isfinite(mu) or mu < 0:
-        raise OffRotorError(f"mu must be a finite advance ratio >= 0, got {mu!r}")
-    rotor = config.rotors[0]
-    tip_speed = rotor.omega * rotor.radius
-    return FlightCondition(speed=float(mu) * tip_speed, alpha=alpha)
-
-
-# --------------------------------------------------------------------------- results
 @dataclass
 class OffRotorModel:
     """An identified off-rotor model (Eq. 2.39 or 2.40) of one surface, one flight condition.
@@ -59,8 +34,8 @@ class OffRotorModel:
     responses : flightid.MeasuredResponse
         The joint input-output ``vbar / lam`` responses fitted.
     verification : dict
-        ``{control: flightid.VerificationResult}``: each doublet (not used in the fit).
-    noise_floor : flightid.VerificationResult
+        ``{control: flightid.verification.VerificationResult}``: each doublet (not used in the fit).
+    noise_floor : flightid.verification.VerificationResult
         The same on the zero-input run: the TIC of the wake's own unsteadiness.
     trim_velocity : dict
         Mean ``vx, vy, vz`` [-] at the surface on the zero-input run (trim).

@@ -39,8 +39,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .axisymmetric import Coaxial6StateAxisymmetric
-from .structures import _PP_M11, Coaxial6State, _COAX6_FREE
+from aircraft.identification.structures.axisymmetric import Coaxial6StateAxisymmetric
+from aircraft.identification.structures.base import PITT_PETERS_M11
+from aircraft.identification.structures.hover import Coaxial6State, _COAX6_FREE
 
 __all__ = ["Coaxial6StateFeedthrough", "coaxial_sum_difference", "six_state_diagnostics"]
 
@@ -183,7 +184,7 @@ def six_state_diagnostics(responses, omega, *, fit_range=(1.0, 25.0), n_omega=20
     summary : pandas.DataFrame
         One row per fit: rotor frame, sum/difference coordinates, rotor frame with
         feedthrough, rotor frame with the apparent-mass diagonal fixed, then
-        :class:`~aircraft.identification.axisymmetric.Coaxial6StateAxisymmetric` on
+        :class:`~aircraft.identification.structures.axisymmetric.Coaxial6StateAxisymmetric` on
         ``fit_range`` from each of its equation-error starts, and on ``axi_high_band``
         with ``m11, m44`` fixed at Pitt-Peters' and reduced (:func:`flightid.reduce`);
         the axisymmetric rows only where the data hold the off-harmonic pairs; the cost on the 12
@@ -273,7 +274,7 @@ def six_state_diagnostics(responses, omega, *, fit_range=(1.0, 25.0), n_omega=20
     # block stays nearly rank one there), from the highest band's start; reported on
     # the common band as well
     high = (max(axi_high_band[0], fit_range[0]), fit_range[1])
-    values = dict(starts[-1][1], m11=_PP_M11, m44=_PP_M11)
+    values = dict(starts[-1][1], m11=PITT_PETERS_M11, m44=PITT_PETERS_M11)
     # reduced as the pipeline does (guideline thresholds; a few seconds here)
     upper = reduce(axi.build(values, omega, fixed=("m11", "m44")), responses, protected=axi.protected,
                    pairs=rotor_pairs + off_pairs, **dict(kw, frequency_ranges=high)).result

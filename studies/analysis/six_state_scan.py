@@ -4,7 +4,7 @@ The target for a 6-state identified from our wake is the CIFER guideline
 set: every kept parameter with a Cramér-Rao bound below 20 % and an
 insensitivity below 10 %, no flat direction, J_ave below 100. The shipped
 ``coaxial_hover_6state`` meets the cost (107.8, close) but not the bounds (37-64 %
-on every mass and gain); :func:`~aircraft.identification.six_state_diagnostics`
+on every mass and gain); :func:`~studies.analysis.six_state_diagnostics`
 explains it one structure at a time. This module asks the question as a search
 over the whole family a CIFER user would try, on the same lambda/C data:
 
@@ -41,8 +41,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from .six_state_diagnostics import Coaxial6StateFeedthrough, _entries
-from .structures import _COAX6_FREE, _PP_M11, _PP_M22, STRUCTURES, Coaxial6State
+from studies.analysis.six_state_diagnostics import Coaxial6StateFeedthrough, _entries
+from aircraft.identification.structures.hover import _COAX6_FREE, Coaxial6State
+from aircraft.identification.structures.base import PITT_PETERS_M11, PITT_PETERS_M22
 
 __all__ = ["Coaxial6StateVariant", "SixStateCandidate", "SIX_STATE_FAMILY", "SixStateScan", "six_state_scan",
            "plot_cyclic_pairs",
@@ -53,11 +54,11 @@ FEEDTHROUGH_NAMES = tuple(f"d{i}{j}" for i, j in _COAX6_FREE)
 #: The cross-rotor entries: a rotor's inflow from the other rotor's loads.
 CROSS_ROTOR_FEEDTHROUGH = ("d14", "d41", "d25", "d52")
 #: The collective apparent-mass diagonal at Pitt-Peters' hover value 8/(3 pi).
-PITT_PETERS_COLLECTIVE_MASSES = {"m11": _PP_M11, "m44": _PP_M11}
+PITT_PETERS_COLLECTIVE_MASSES = {"m11": PITT_PETERS_M11, "m44": PITT_PETERS_M11}
 #: The a priori settings of the scan: no mass held, the collective diagonal held, or
 #: every diagonal mass held at Pitt-Peters' (cyclic -16/(45 pi) with our frames' sign).
 A_PRIORI_MASSES = {"none": {}, "collective": PITT_PETERS_COLLECTIVE_MASSES,
-                   "diagonal": {**PITT_PETERS_COLLECTIVE_MASSES, "m22": _PP_M22, "m55": _PP_M22}}
+                   "diagonal": {**PITT_PETERS_COLLECTIVE_MASSES, "m22": PITT_PETERS_M22, "m55": PITT_PETERS_M22}}
 
 _PROTECTED = ("m11", "m22", "m44", "m55")
 
@@ -144,7 +145,6 @@ class Coaxial6StateVariant(Coaxial6StateFeedthrough):
         return [] if self.feedthrough else Coaxial6State.extra_starts(self, lam_over_c, omega)
 
 
-STRUCTURES[Coaxial6StateVariant.key] = Coaxial6StateVariant
 
 
 @dataclass(frozen=True)
@@ -405,7 +405,7 @@ def six_state_scan(responses, omega, candidates=SIX_STATE_FAMILY, *, n_omega=20,
     reference_band : (float, float)
         Band [rad/s] of the common cost column ``J_ave_reference_band``.
     cramer_rao_max, insensitivity_max, J_ave_max : float
-        The targets [%, %, -] (``J_ave_max`` default :data:`~aircraft.identification.pipeline.TRUST_J_AVE_MAX`);
+        The targets [%, %, -] (``J_ave_max`` default :data:`~aircraft.identification.trust.TRUST_J_AVE_MAX`);
         the first two are also the reduction's thresholds.
     max_nfev : int
         Model evaluations per fit.
@@ -447,7 +447,7 @@ def six_state_scan(responses, omega, candidates=SIX_STATE_FAMILY, *, n_omega=20,
         raise ValueError("six_state_scan needs at least one candidate")
     if int(n_jobs) < 1:
         raise ValueError(f"n_jobs must be >= 1, got {n_jobs!r}")
-    from .pipeline import TRUST_J_AVE_MAX
+    from aircraft.identification.trust import TRUST_J_AVE_MAX
     J_ave_max = TRUST_J_AVE_MAX if J_ave_max is None else J_ave_max
     targets = {"cramer_rao_max": float(cramer_rao_max), "insensitivity_max": float(insensitivity_max),
                "J_ave_max": float(J_ave_max)}

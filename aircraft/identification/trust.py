@@ -1,0 +1,207 @@
+"""When an identified model is trusted: the guideline with its keep rule, in one place.
+
+The guideline (Tischler & Remple; the dissertation's §3.3.7, §4.4) asks every free
+parameter for a Cramér-Rao bound below ``settings.cramer_rao_max`` (20 %) and an
+insensitivity below ``settings.insensitivity_max`` (10 %), and the reduction removes the
+ones that fail one at a time (Fig. 6.1) -- unless a removal spoils the fit: a parameter
+over the Cramér-Rao bound whose removal raised the average cost by more than 2, or one
+response's cost by more than 10, stays, with that measured rise as its reason (read from
+the reduction's own log). An insensitive parameter is never kept (it hardly moves the
+cost, so no cost rise can keep it). Besides the parameters, a trusted model has no flat
+direction of the cost (a low J on a flat valley is a failure, not a result) and an
+average cost J_ave of at most :data:`TRUST_J_AVE_MAX` (a low bound on a poor fit is no
+trust: the forward-flight mu = 0.2 model had every bound under 20 % at J_ave 490), or at
+most the limit the caller gives (e.g. the dissertation's J_ave for the same structure
+and band).
+
+::
+
+    trust_check(model) -> TrustCheck        (IdentifiedModel.trusted / .trust use it)
+        .passes        True when every check holds
+        .table         one row per free parameter: bounds, verdict (ok / kept / fails), reason
+        .failures      the reasons the model is not trusted, as sentences
+        .plot()        the parameters' bounds against the guideline
+
+A model without a reduction log (a model file, a fit that was not reduced) is held to
+the bounds strictly: nothing says a parameter over them cannot be removed.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["TRUST_J_AVE_MAX", "TrustCheck", "trust_check"]
+
+#: The CIFER guideline on the average cost of a trusted model (Tischler & Remple:
+#: J_ave <= 100 "generally reflects an acceptable level of accuracy").
+TRUST_J_AVE_MAX = 100.0
+
+
+@dataclass
+class TrustCheck:
+    """Result of :func:`trust_check`.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per free parameter: ``parameter``, ``cramer_rao_pct``,
+        ``insensitivity_pct`` [%], ``verdict`` (``"ok"``, ``"kept"`` or ``"fails"``) and
+        ``reason`` (empty for ``"ok"``).
+    failures : list of str
+        Why the model is not trusted (empty when it is).
+    limits : dict
+        The limits applied: ``cramer_rao_max``, ``insensitivity_max`` [%], ``j_ave_max``,
+        ``max_rise_average``, ``max_rise_single`` [-], ``keep_rule`` (a reduction log was read).
+    """
+
+    table: pd.DataFrame
+    failures: list = field(default_factory=list)
+    limits: dict = field(default_factory=dict)
+
+    @property
+    def passes(self) -> bool:
+        """True when the model is trusted."""
+        return not self.failures
+
+    def to_pandas(self) -> pd.DataFrame:
+        """The per-parameter table (a copy)."""
+        return self.table.copy()
+
+    def plot(self, fig=None):
+        """Cramér-Rao bound and insensitivity of every free parameter against the guideline.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        from matplotlib.figure import Figure
+        fig = fig or Figure(figsize=(max(5.0, 0.35 * len(self.table) + 2.0), 3.6))
+        ax = fig.add_subplot(111)
+        x = np.arange(len(self.table))
+        colours = {"ok": "tab:green", "kept": "tab:orange", "fails": "tab:red"}
+        ax.bar(x - 0.2, self.table.cramer_rao_pct.clip(upper=1e4), 0.4,
+               color=[colours[v] for v in self.table.verdict], label="Cramér-Rao [%]")
+        ax.bar(x + 0.2, self.table.insensitivity_pct.clip(upper=1e4), 0.4, color="0.6", label="insensitivity [%]")
+        ax.axhline(self.limits.get("cramer_rao_max", 20.0), color="k", ls="--", lw=0.8)
+        ax.axhline(self.limits.get("insensitivity_max", 10.0), color="0.4", ls=":", lw=0.8)
+        ax.set_yscale("log")
+        ax.set_xticks(x, self.table.parameter, rotation=90, fontsize=7)
+        ax.set_title(("trusted" if self.passes else "not trusted") + " (bar colour: ok / kept / fails)", fontsize=9)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        return fig
+
+
+def _limit(settings, name, default):
+    if settings is None:
+        return default
+    if isinstance(settings, dict):
+        return float(settings.get(name, default))
+    return float(getattr(settings, name, default))
+
+
+def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=10.0):
+    """Whether an identified model is trusted, parameter by parameter, with the reasons.
+
+    Parameters
+    ----------
+    model : IdentifiedModel or ModelRecord
+        An identified model (its fit, settings, degeneracy report and, when reduced, the
+        reduction's log), or a model file's record (its parameter table and settings).
+    j_ave_max : float, optional
+        Largest trusted average cost (default :data:`TRUST_J_AVE_MAX`; pass the
+        dissertation's J_ave for the same structure and band where it prints one).
+    max_rise_average, max_rise_single : float
+        Cost rises [-] of a refused removal that keep a parameter over the Cramér-Rao
+        bound: the average J, any single response's J (:func:`flightid.reduce`'s defaults).
+
+    Returns
+    -------
+    TrustCheck
+
+    Raises
+    ------
+    ValueError
+        Non-positive limits, or a model without a parameter table.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from types import SimpleNamespace
+    >>> fit = SimpleNamespace(parameters=pd.DataFrame({"parameter": ["m", "l"], "status": ["free", "free"],
+    ...                                                 "cramer_rao_pct": [4.0, 35.0],
+    ...                                                 "insensitivity_pct": [1.0, 2.0]}), degeneracy=None)
+    >>> check = trust_check(SimpleNamespace(fit=fit, J_ave=12.0, settings=None, reduction=None))
+    >>> check.passes, check.table.verdict.tolist()
+    (False, ['ok', 'fails'])
+    """
+    for name, v in (("max_rise_average", max_rise_average), ("max_rise_single", max_rise_single)):
+        if not (isinstance(v, (int, float)) and v > 0):
+            raise ValueError(f"{name} must be positive, got {v!r}")
+    j_max = TRUST_J_AVE_MAX if j_ave_max is None else j_ave_max
+    if not (isinstance(j_max, (int, float)) and j_max > 0):
+        raise ValueError(f"j_ave_max must be positive, got {j_ave_max!r}")
+    fit = getattr(model, "fit", None)
+    params = getattr(fit, "parameters", None) if fit is not None else getattr(model, "parameters", None)
+    if not isinstance(params, pd.DataFrame) or "status" not in params:
+        raise ValueError(f"model {getattr(model, 'name', model)!r} has no parameter table to judge")
+    settings = getattr(model, "settings", None)
+    cr_max = _limit(settings, "cramer_rao_max", 20.0)
+    ins_max = _limit(settings, "insensitivity_max", 10.0)
+    reduction = getattr(model, "reduction", None)
+    log = getattr(reduction, "log", None) if reduction is not None else None
+    keep_rule = isinstance(log, pd.DataFrame)
+    free = params[params.status == "free"]
+    failures, rows = [], []
+    if not len(free):
+        failures.append("no free parameter")
+    for p in free.itertuples():
+        cr, ins = float(p.cramer_rao_pct), float(p.insensitivity_pct)
+        bad_cr, bad_ins = not cr < cr_max, not ins < ins_max
+        if not (bad_cr or bad_ins):
+            rows.append((p.parameter, cr, ins, "ok", ""))
+        elif bad_ins:
+            rows.append((p.parameter, cr, ins, "fails", f"insensitivity {ins:.3g} % >= {ins_max:g} %: it hardly "
+                         "moves the cost, so no cost rise can keep it"))
+        elif not keep_rule:
+            rows.append((p.parameter, cr, ins, "fails", f"Cramér-Rao {cr:.3g} % >= {cr_max:g} % (no reduction log "
+                         "says its removal is too costly)"))
+        else:
+            rows.append((p.parameter, cr, ins) + _keep_verdict(p.parameter, cr, cr_max, log, max_rise_average,
+                                                               max_rise_single))
+    table = pd.DataFrame(rows, columns=["parameter", "cramer_rao_pct", "insensitivity_pct", "verdict", "reason"])
+    bad = table[table.verdict == "fails"]
+    if len(bad):
+        failures.append(f"parameters outside the bounds and not kept by the guideline: {bad.parameter.tolist()}")
+    j_ave = float(getattr(model, "J_ave", np.nan))
+    if not j_ave <= j_max:
+        failures.append(f"J_ave {j_ave:.4g} > {j_max:g}")
+    deg = getattr(fit, "degeneracy", None) if fit is not None else None
+    if deg is not None and len(deg.flat_directions):
+        failures.append(f"{len(deg.flat_directions)} flat direction(s) of the cost: "
+                        + "; ".join(deg.flat_directions.parameters.astype(str)))
+    limits = {"cramer_rao_max": cr_max, "insensitivity_max": ins_max, "j_ave_max": float(j_max),
+              "max_rise_average": float(max_rise_average), "max_rise_single": float(max_rise_single),
+              "keep_rule": keep_rule}
+    return TrustCheck(table, failures, limits)
+
+
+def _keep_verdict(name, cr, cr_max, log, max_rise_average, max_rise_single):
+    """(verdict, reason) of a parameter over the Cramér-Rao bound, from the reduction's log."""
+    tries = log[(log.parameter == name) & ~log.accepted.astype(bool)]
+    for t in tries.itertuples():
+        rise_avg = float(t.J_ave_after) - float(t.J_ave_before)
+        rise_one = float(t.max_single_rise)
+        if bool(t.runaway) or not (np.isfinite(rise_avg) and np.isfinite(rise_one)):
+            continue
+        if rise_avg > max_rise_average or rise_one > max_rise_single:
+            return "kept", (f"Cramér-Rao {cr:.3g} % >= {cr_max:g} %, kept: removing it raised J_ave by "
+                            f"{rise_avg:.3g} (limit {max_rise_average:g}) and one response's J by {rise_one:.3g} "
+                            f"(limit {max_rise_single:g})")
+    why = ("its removal was refused only because the fit ran away (a flat valley, not a kept parameter)"
+           if len(tries) and tries.runaway.astype(bool).any() else
+           "the reduction never found its removal too costly" if len(tries) else
+           "the reduction did not try to remove it")
+    return "fails", f"Cramér-Rao {cr:.3g} % >= {cr_max:g} %: {why}"

@@ -1,0 +1,121 @@
+"""Single-rotor forward-flight models beside Pitt-Peters and the dissertation's Eqs. 4.7-4.8.
+
+::
+
+    forward_comparison_table  ours / linearised Pitt-Peters / the dissertation's Eqs. 4.7-4.8
+    forward_bode_overlay      the key responses: data, ours, Pitt-Peters, Eq. 4.7 or 4.8
+
+The tables print ``M/Omega`` [s] as Eqs. 4.7-4.8 do (that reading of the printed M is
+argued in :mod:`aircraft.inflow.published`).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from aircraft.identification.forward_flight import pitt_peters_forward
+from aircraft.identification.structures.forward import KEY_RESPONSES
+
+__all__ = ["forward_comparison_table", "forward_bode_overlay"]
+
+
+def _published_for(mu):
+    from aircraft.inflow.published import UH60_MU01_MFW, UH60_MU02_MFW
+    return {0.1: UH60_MU01_MFW, 0.2: UH60_MU02_MFW}.get(round(float(mu), 6))
+
+
+_ROWS = (("M11/Omega [s]", "M", (0, 0)), ("M22/Omega [s]", "M", (1, 1)), ("M33/Omega [s]", "M", (2, 2)),
+         ("Lbar11", "L", (0, 0)), ("Lbar13", "L", (0, 2)), ("Lbar22", "L", (1, 1)), ("Lbar31", "L", (2, 0)),
+         ("Lbar33", "L", (2, 2)), ("tau11 [s]", "tau", (0, 0)), ("tau13 [s]", "tau", (0, 2)),
+         ("tau22 [s]", "tau", (1, 1)), ("tau31 [s]", "tau", (2, 0)), ("tau33 [s]", "tau", (2, 2)))
+
+
+def forward_comparison_table(models, *, alpha=0.0):
+    """Identified coefficients beside linearised Pitt-Peters and the dissertation's Eqs. 4.7-4.8.
+
+    Parameters
+    ----------
+    models : dict
+        ``{mu: IdentifiedModel}`` (from :func:`identify_forward_flight`).
+    alpha : float
+        Shaft angle [rad] of the Pitt-Peters linearisation (that of the wake runs).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (mu, coefficient): ``ours``, ``cramer_rao_pct``,
+        ``insensitivity_pct``, ``status`` (free / removed by the reduction / tied),
+        ``pitt_peters`` (at the wake's trimmed C_T) and ``dissertation`` (printed
+        Eq. 4.7 for mu = 0.1, Eq. 4.8 for mu = 0.2, else NaN; reference data, never an
+        output). ``M`` rows are ``M/Omega`` [s], delays [s].
+
+    Raises
+    ------
+    ValueError
+        Empty ``models``.
+    """
+    if not models:
+        raise ValueError("forward_comparison_table needs at least one {mu: IdentifiedModel}")
+    rows = []
+    for mu, model in sorted(models.items()):
+        omega = model.omega
+        mats = model.fit.structure.matrices()
+        p = model.parameters.set_index("parameter")
+        pp_m, pp_l = pitt_peters_forward(model.trim.outputs["CT"], mu, alpha, omega)
+        pub = _published_for(mu)
+        for label, mat, (i, j) in _ROWS:
+            scale = 1.0 / omega if mat == "M" else 1.0
+            pname = f"{ {'M': 'm', 'L': 'l', 'tau': 't'}[mat]}{i + 1}{j + 1}".replace(" ", "")
+            if pname in p.index:
+                cr, ins, status = (p.loc[pname, "cramer_rao_pct"], p.loc[pname, "insensitivity_pct"],
+                                   p.loc[pname, "status"])
+            else:
+                cr, ins, status = np.nan, np.nan, "tied" if np.ravel(mats[mat])[3 * i + j] != 0 else "not in model"
+            pp = {"M": pp_m[i, j] / omega, "L": pp_l[i, j], "tau": 0.0}[mat]
+            ref = np.nan
+            if pub is not None:
+                ref = {"M": pub.M_seconds, "L": pub.L, "tau": pub.tau}[mat][i, j]
+            rows.append({"mu": mu, "coefficient": label, "ours": float(mats[mat][i, j]) * scale,
+                         "cramer_rao_pct": cr, "insensitivity_pct": ins, "status": status,
+                         "pitt_peters": float(pp), "dissertation": float(ref)})
+    return pd.DataFrame(rows)
+
+
+def forward_bode_overlay(model, mu, *, alpha=0.0, pairs=KEY_RESPONSES, fig=None):
+    """Bode overlay of the key forward-flight responses: wake data, ours, Pitt-Peters, Eq. 4.7/4.8.
+
+    Parameters
+    ----------
+    model : IdentifiedModel
+        From :func:`identify_forward_flight`.
+    mu : float
+        Advance ratio (selects the printed Eq. 4.7 or 4.8 and the Pitt-Peters point).
+    alpha : float
+        Shaft angle [rad] of the Pitt-Peters linearisation.
+    pairs : sequence of (output, input)
+        Responses shown (default :data:`KEY_RESPONSES`).
+    fig : matplotlib.figure.Figure, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Magnitude [dB], phase [deg] and coherence per response.
+    """
+    from flightid import MLTauStructure
+    from flightid.plotting import bode_with_coherence
+    omega = model.omega
+    w = model.responses.omega
+    lo, hi = model.settings.fit_range
+    w = w[(w >= lo) & (w <= hi)]
+    sources = [(model.responses, "free wake (joint input-output)"),
+               (model.fit.structure.to_frd(w, name="ours"), "ours")]
+    names = model.structure.inputs, model.structure.outputs
+    pp_m, pp_l = pitt_peters_forward(model.trim.outputs["CT"], mu, alpha, omega)
+    pp = MLTauStructure(pp_m, pp_l, inputs=names[0], outputs=names[1], initial={}, omega=omega)
+    sources.append((pp.to_frd(w), "linearised Pitt-Peters"))
+    pub = _published_for(mu)
+    if pub is not None:
+        ref = MLTauStructure(pub.M * pub.omega if pub.time == "seconds" else pub.M, pub.L, pub.tau,
+                             inputs=names[0], outputs=names[1], initial={}, omega=pub.omega)
+        sources.append((ref.to_frd(w), f"dissertation Eq. {'4.7' if round(mu, 6) == 0.1 else '4.8'} (printed)"))
+    return bode_with_coherence(sources, list(pairs), fig=fig)

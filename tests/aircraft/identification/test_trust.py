@@ -1,0 +1,95 @@
+"""When an identified model is trusted (aircraft.identification.trust), on stub models and logs.
+
+Each branch of the rule is exercised on a stand-in with only what trust_check reads:
+free parameters with bounds, the reduction log, the settings' bounds, J_ave and the
+degeneracy report. The expected verdicts are written out by hand from the rule.
+"""
+from types import SimpleNamespace
+
+import pandas as pd
+import pytest
+
+from aircraft.identification.trust import TRUST_J_AVE_MAX, trust_check
+
+LOG_COLUMNS = ["parameter", "reason", "metric_pct", "J_ave_before", "J_ave_after", "max_single_rise",
+               "accepted", "runaway", "note"]
+
+
+def _model(params, log_rows=None, J_ave=40.0, flat=None):
+    parameters = pd.DataFrame([{"parameter": n, "status": "free", "cramer_rao_pct": cr,
+                                "insensitivity_pct": ins} for n, cr, ins in params],
+                              columns=["parameter", "status", "cramer_rao_pct", "insensitivity_pct"])
+    degeneracy = None if flat is None else SimpleNamespace(flat_directions=pd.DataFrame({"parameters": flat}))
+    return SimpleNamespace(name="stub", settings=SimpleNamespace(cramer_rao_max=20.0, insensitivity_max=10.0),
+                           fit=SimpleNamespace(parameters=parameters, degeneracy=degeneracy), J_ave=J_ave,
+                           reduction=None if log_rows is None else
+                           SimpleNamespace(log=pd.DataFrame(log_rows, columns=LOG_COLUMNS)))
+
+
+def test_a_parameter_whose_removal_spoils_one_response_is_kept_with_the_measured_rise():
+    m = _model([("a", 5.0, 1.0), ("b", 31.0, 2.0)],
+               [("b", "cramer_rao", 31.0, 40.0, 41.0, 16.7, False, False, "cost rise too large; kept")])
+    g = trust_check(m)
+    assert g.passes and g.failures == []
+    assert g.table.set_index("parameter").verdict.to_dict() == {"a": "ok", "b": "kept"}
+    row = g.table.set_index("parameter").loc["b"]
+    assert "16.7" in row.reason and "limit 10" in row.reason
+
+
+def test_the_average_rise_alone_also_keeps():
+    m = _model([("b", 31.0, 2.0)], [("b", "cramer_rao", 31.0, 40.0, 42.5, 3.0, False, False, "")])
+    assert trust_check(m).passes
+    # ... but not when the caller allows a larger rise
+    assert not trust_check(m, max_rise_average=3.0).passes
+
+
+@pytest.mark.parametrize("log_rows, why", [
+    ([], "did not try"),
+    ([("b", "cramer_rao", 31.0, 40.0, 41.0, 5.0, False, False, "")], "never found its removal too costly"),
+    ([("b", "cramer_rao", 31.0, 40.0, 41.0, 50.0, False, True, "runaway")], "ran away"),
+])
+def test_a_parameter_not_kept_by_the_rule_fails(log_rows, why):
+    g = trust_check(_model([("b", 31.0, 2.0)], log_rows))
+    assert not g.passes
+    assert g.table.verdict.tolist() == ["fails"] and why in g.table.reason.iloc[0]
+
+
+def test_an_insensitive_parameter_is_never_kept():
+    m = _model([("c", 5.0, 14.0)], [("c", "insensitivity", 14.0, 40.0, 52.0, 30.0, False, False, "")])
+    g = trust_check(m)
+    assert not g.passes and "insensitivity" in g.table.reason.iloc[0]
+
+
+def test_without_a_reduction_log_the_bounds_are_strict():
+    g = trust_check(_model([("a", 5.0, 1.0), ("b", 31.0, 2.0)], log_rows=None))
+    assert not g.passes and "no reduction log" in g.table.set_index("parameter").loc["b", "reason"]
+    assert not g.limits["keep_rule"]
+
+
+def test_j_ave_and_flat_directions_count():
+    g = trust_check(_model([("a", 5.0, 1.0)], [], flat=["+a -b"]))
+    assert g.failures == ["1 flat direction(s) of the cost: +a -b"]
+    g = trust_check(_model([("a", 5.0, 1.0)], [], J_ave=1.5 * TRUST_J_AVE_MAX))
+    assert not g.passes and g.failures[0].startswith("J_ave 150")
+    # a published reference cost replaces the default limit
+    assert trust_check(_model([("a", 5.0, 1.0)], [], J_ave=150.0), j_ave_max=171.0).passes
+
+
+def test_a_model_file_record_is_judged_from_its_table():
+    rec = SimpleNamespace(name="file", parameters=pd.DataFrame(
+        [{"parameter": "m", "status": "free", "cramer_rao_pct": 3.0, "insensitivity_pct": 1.0},
+         {"parameter": "t", "status": "fixed", "cramer_rao_pct": float("nan"), "insensitivity_pct": float("nan")}]),
+        settings={"cramer_rao_max": 20.0, "insensitivity_max": 10.0}, J_ave=12.0)
+    g = trust_check(rec)
+    assert g.passes and g.table.parameter.tolist() == ["m"]
+
+
+def test_bad_inputs():
+    m = _model([("a", 5.0, 1.0)], [])
+    with pytest.raises(ValueError, match="positive"):
+        trust_check(m, max_rise_single=0.0)
+    with pytest.raises(ValueError, match="positive"):
+        trust_check(m, j_ave_max=-1.0)
+    with pytest.raises(ValueError, match="no parameter table"):
+        trust_check(SimpleNamespace(name="x"))
+    assert trust_check(_model([], [])).failures[0] == "no free parameter"
