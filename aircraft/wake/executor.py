@@ -373,10 +373,13 @@ class DaskExecutor:
                 try:
                     fut.result()
                 except distributed.KilledWorker as e:
+                    allowed = getattr(e, "allowed_failures", None)
+                    tries = ("on every try the scheduler allows" if allowed is None else
+                             f"on each of its {allowed + 1} tries")
                     raise WorkerLostError(
-                        f"job {name_of[fut]!r}: the Dask workers that ran it died (killed, or out "
-                        f"of memory?) more often than the scheduler allows "
-                        f"(distributed.scheduler.allowed-failures); it has no result.",
+                        f"job {name_of[fut]!r}: the Dask worker running it died (killed, or out of "
+                        f"memory?) {tries} (distributed.scheduler.allowed-failures); it has no "
+                        f"result.",
                         [name_of[fut]]) from e
         finally:
             if pending:
