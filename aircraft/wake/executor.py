@@ -270,6 +270,12 @@ class DaskExecutor:
     ``dask worker tcp://host:8786 --nworkers <cores> --nthreads 1``. The workers
     need this package (the same version: :func:`aircraft.wake.run_sweeps`
     refuses results from other wake code) but not the caller's filesystem.
+
+    A worker that dies takes every task it holds with it, and the scheduler
+    counts the death against each of them (``allowed-failures``): set
+    ``distributed.scheduler.worker-saturation: 1.0`` on the scheduler so a
+    one-thread worker holds only the task it runs, and a job that keeps
+    killing its workers is the one named by :class:`WorkerLostError`.
     """
 
     name = "dask"

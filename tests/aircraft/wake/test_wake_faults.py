@@ -13,6 +13,7 @@ import logging
 import multiprocessing
 import os
 import pickle
+import re
 import signal
 import sys
 import traceback
@@ -30,7 +31,7 @@ from aircraft.configs import uh60_single_rotor
 from aircraft.wake import (CacheWarning, FlightCondition, SweepSpec, WakeCache, WakeSettings,
                            WakeTrim, run_sweeps)
 from aircraft.wake.cache import CacheStoreWarning, CacheWriteError, check_finite_frame
-from aircraft.wake.executor import WorkerLostError, make_executor
+from aircraft.wake.executor import LocalPoolExecutor, WorkerLostError, make_executor
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="SIGKILL and POSIX rename semantics")
 
@@ -103,32 +104,22 @@ def _check_folder(folder):
     folder = Path(folder)
     files = sorted(p.name for p in folder.iterdir())
     assert all(n.endswith(".pkl") and not n.startswith(".") for n in files), files
-    keys = {s.name: sweeps_module._key({**_base(), "spec": asdict(s),
-                                        "signal": sweeps_module._signal_digest(s, _dt())})
-            for s in SPECS}
     cache = WakeCache(folder, VERSION)
+    by_name = {s.name: s for s in SPECS}
     stored = []
     with warnings.catch_warnings():
         warnings.simplefilter("error", CacheWarning)
-        for s in SPECS:
-            if cache.path(keys[s.name]).exists():
-                df = cache.load(keys[s.name], check=sweeps_module._check_run(s))
-                pd.testing.assert_frame_equal(df, _expected(s), check_exact=True)
-                stored.append(s.name)
-    n_trim = sum(n.startswith("trim-") for n in files)
-    assert len(files) == len(stored) + n_trim and n_trim <= 1, files
-    return stored
-
-
-def _base():
-    # the key of run_sweeps (same construction, so the test reads the entries it wrote)
-    return {"v": VERSION, "code": sweeps_module._wake_code_digest(), "config": repr(CFG),
-            "settings": asdict(SETTINGS), "flight": asdict(FLIGHT), "trim": {"ct": 0.0061},
-            "points": {}, **sweeps_module._kernel_key()}
-
-
-def _dt():
-    return SETTINGS.azimuth_step / float(CFG.rotors[0].omega)
+        for n in files:
+            if n.startswith("trim-"):
+                assert cache.load(n[:-4], kind="trim", check=sweeps_module._check_trim) is not None
+                continue
+            df = cache.load(n[:-4], kind="run")
+            spec = by_name[df.attrs["spec"]["label"]]
+            sweeps_module._check_run(spec)(df)
+            pd.testing.assert_frame_equal(df, _expected(spec), check_exact=True)
+            stored.append(spec.name)
+    assert len(stored) == len(set(stored)) and sum(n.startswith("trim-") for n in files) <= 1, files
+    return sorted(stored)
 
 
 # ------------------------------------------------- 1. two processes, one entry
@@ -228,8 +219,13 @@ def test_a_bad_entry_replaced_by_another_process_is_not_deleted(tmp_path):
 @pytest.fixture(scope="module")
 def cluster():
     distributed = pytest.importorskip("distributed", reason="the `cluster` extra is not installed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None, silence_logs=logging.CRITICAL) as cl, \
+    import dask
+    # one task at a time per one-thread worker (Dask's default queues a second one
+    # there): a killed worker then takes only the task it was running with it, so
+    # the job the scheduler gives up on is the one that kills, not a bystander
+    with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None, silence_logs=logging.CRITICAL) as cl, \
             distributed.Client(cl, set_as_default=False) as client:
         yield cl, client
 
@@ -291,13 +287,20 @@ def test_a_case_that_keeps_killing_dask_workers_is_named_and_nothing_partial_is_
     assert sorted(calls) == sorted(set(s.name for s in SPECS) - set(stored))
 
 
-def test_a_killed_local_pool_worker_is_a_clear_error_naming_the_case(fake, tmp_path, monkeypatch):
-    monkeypatch.setattr(sweeps_module, "_worker", functools.partial(_killing_worker, ("run1", None)))
-    with pytest.raises(WorkerLostError, match=r"worker process of the local pool died .*'run1'") as err:
-        _sweep(tmp_path, n_jobs=2)
-    assert "run1" in err.value.names and isinstance(err.value, RuntimeError)
-    stored = _check_folder(tmp_path)
-    assert "run1" not in stored and not set(stored) & set(err.value.names)
+def test_a_killed_local_pool_worker_is_a_clear_error_naming_the_case():
+    # a local pool cannot rerun anything (BrokenProcessPool ends it): the error
+    # names every job left without a result, and the finished ones come first
+    from concurrent.futures.process import BrokenProcessPool
+    from tests.aircraft.wake._fault_jobs import kill_on
+    got = []
+    with LocalPoolExecutor(2) as ex, pytest.raises(WorkerLostError) as err:
+        for value in ex.map_unordered(kill_on, ["a", "kill", "b", "c"], names=["a", "kill", "b", "c"]):
+            got.append(value)
+    assert isinstance(err.value, RuntimeError) and isinstance(err.value.__cause__, BrokenProcessPool)
+    assert "kill" in err.value.names and not set(got) & set(err.value.names)
+    assert sorted(got + list(err.value.names)) == ["a", "b", "c", "kill"]
+    assert re.search(r"worker process of the local pool died \(killed by a signal, or out of memory\?\) "
+                     r"while running one of \[.*'kill'.*\]", str(err.value))
 
 
 # --------------------------------------------------------------- 3. a full disk
