@@ -287,17 +287,26 @@ def test_a_case_that_keeps_killing_dask_workers_is_named_and_nothing_partial_is_
     assert sorted(calls) == sorted(set(s.name for s in SPECS) - set(stored))
 
 
-def test_a_killed_local_pool_worker_is_a_clear_error_naming_the_case():
+def test_a_killed_local_pool_worker_is_a_clear_error_naming_the_case(monkeypatch):
     # a local pool cannot rerun anything (BrokenProcessPool ends it): the error
-    # names every job left without a result, and the finished ones come first
+    # names every job left without a result, and the finished ones come first,
+    # even when the failure is seen before them (the order forced here)
     from concurrent.futures.process import BrokenProcessPool
+    import aircraft.wake.executor as executor_module
     from tests.aircraft.wake._fault_jobs import kill_on
+    real = executor_module.as_completed
+
+    def failed_first(futures):
+        futures = list(real(futures))
+        return sorted(futures, key=lambda f: f.exception() is None)
+    monkeypatch.setattr(executor_module, "as_completed", failed_first)
     got = []
     with LocalPoolExecutor(2) as ex, pytest.raises(WorkerLostError) as err:
         for value in ex.map_unordered(kill_on, ["a", "kill", "b", "c"], names=["a", "kill", "b", "c"]):
             got.append(value)
     assert isinstance(err.value, RuntimeError) and isinstance(err.value.__cause__, BrokenProcessPool)
     assert "kill" in err.value.names and not set(got) & set(err.value.names)
+    assert "a" in got                      # done long before "kill" (0.5 s) killed its worker
     assert sorted(got + list(err.value.names)) == ["a", "b", "c", "kill"]
     assert re.search(r"worker process of the local pool died \(killed by a signal, or out of memory\?\) "
                      r"while running one of \[.*'kill'.*\]", str(err.value))
