@@ -198,7 +198,7 @@ class LocalPoolExecutor:
                 raise WorkerLostError(
                     f"a worker process of the local pool died (killed by a signal, or out of "
                     f"memory?) while running one of {lost}; the pool cannot rerun them: none of "
-                    f"these has a result. {len(handed)} job(s) finished and were kept.",
+                    f"these has a result ({len(handed)} finished job(s) were handed over first).",
                     lost) from fut.exception()
             fut.result()     # re-raises the job's own exception
 
