@@ -20,6 +20,19 @@ and is
 * never trusted when a check fails: a :class:`CacheWarning` says which check and
   which file, the entry is deleted and the caller recomputes it.
 
+Faults
+------
+* Several processes may fill the same entry at once (two studies sharing a
+  folder): each writes its own temporary file (process id + random suffix, so
+  no two writers ever share one) and the last :func:`os.replace` wins; both
+  values are whole, checked entries of the same key, so no lock is needed.  An
+  entry found bad is deleted only if it is still the file that was read, not a
+  good one another process has just put in its place.
+* A write that fails (full disk, quota, read-only folder) removes its temporary
+  file and raises :class:`CacheWriteError` (an :class:`OSError` keeping the
+  ``errno``); :func:`aircraft.wake.run_sweeps` turns a *full* disk into a
+  :class:`CacheStoreWarning` and keeps the computed value.
+
 Values are also checked to be finite *before* they are stored: a run with NaN in
 it is an error (:class:`WakeCacheError`), never an entry.
 
@@ -34,6 +47,7 @@ Entries are pickles: keep the cache folder private (unpickling runs code).
 """
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import math
@@ -47,8 +61,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-__all__ = ["CACHE_ENV", "DEFAULT_CACHE_DIR", "SCHEMA_VERSION", "CacheWarning", "WakeCacheError",
-           "WakeCache", "resolve_cache_dir", "check_finite_frame"]
+__all__ = ["CACHE_ENV", "DEFAULT_CACHE_DIR", "SCHEMA_VERSION", "CacheWarning", "CacheStoreWarning",
+           "WakeCacheError", "CacheWriteError", "WakeCache", "resolve_cache_dir", "check_finite_frame"]
 
 #: environment variable naming the cache folder
 CACHE_ENV = "ROTORWAKE_CACHE_DIR"
@@ -60,6 +74,9 @@ _MAGIC = b"ROTORWAKE-CACHE\n"
 _MAX_HEADER = 4096
 #: temporary files older than this [s] are left-overs of killed runs and are removed
 _STALE_TMP_AGE = 24 * 3600.0
+#: errno values meaning "no room left": the value is fine, only the storage is exhausted
+_NO_SPACE_ERRNOS = frozenset(e for e in (getattr(errno, n, None) for n in ("ENOSPC", "EDQUOT", "EFBIG"))
+                            if e is not None)
 
 
 class CacheWarning(UserWarning):
@@ -67,8 +84,25 @@ class CacheWarning(UserWarning):
     and is being recomputed."""
 
 
+class CacheStoreWarning(CacheWarning):
+    """A computed value could not be stored (the disk is full); it is returned, not cached."""
+
+
 class WakeCacheError(ValueError):
     """A value cannot be stored: it holds NaN/inf, or is not what the cache keeps."""
+
+
+class CacheWriteError(OSError):
+    """Writing a cache entry failed (full disk, quota, read-only or vanished folder).
+
+    ``errno`` is the failed call's (e.g. :data:`errno.ENOSPC`); the temporary
+    file has been removed and no entry was written.
+    """
+
+    @property
+    def no_space(self):
+        """True when the storage is full (ENOSPC, EDQUOT, EFBIG), not misconfigured."""
+        return self.errno in _NO_SPACE_ERRNOS
 
 
 def resolve_cache_dir(cache_dir="default"):
@@ -185,8 +219,30 @@ class WakeCache:
     def store(self, key, value, kind="run", check=None):
         """Write ``value`` under ``key`` atomically.
 
-        ``check(value)`` (e.g. :func:`check_finite_frame`) must pass first; it
-        raises :class:`WakeCacheError` for a value that may not be stored.
+        Parameters
+        ----------
+        key : str
+            Entry name.
+        value : object
+            Picklable value.
+        kind : str
+            Kind of entry (``"run"``, ``"trim"``), checked on reading.
+        check : callable, optional
+            ``check(value)`` (e.g. :func:`check_finite_frame`) must pass first;
+            it raises :class:`WakeCacheError` for a value that may not be stored.
+
+        Returns
+        -------
+        pathlib.Path
+            The entry's file.
+
+        Raises
+        ------
+        WakeCacheError
+            ``check`` refused the value; nothing is written.
+        CacheWriteError
+            The file could not be written (full disk, quota, read-only folder):
+            its temporary file is removed and any older entry is left untouched.
         """
         if check is not None:
             check(value)
@@ -195,6 +251,8 @@ class WakeCache:
                   "kind": kind, "length": len(payload),
                   "sha256": hashlib.sha256(payload).hexdigest()}
         final = self.path(key)
+        # a name no other writer can pick (pid + random): two processes filling the
+        # same entry never write into one file; the last os.replace wins, whole
         tmp = self.directory / f".{final.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp"
         try:
             with open(tmp, "wb") as f:
@@ -204,9 +262,18 @@ class WakeCache:
                 f.flush()
                 os.fsync(f.fileno())
             os.replace(tmp, final)
+        except OSError as e:
+            if e.errno is None:
+                raise CacheWriteError(f"cannot write wake cache entry {final}: {e}") from e
+            raise CacheWriteError(e.errno, f"cannot write wake cache entry {final}: "
+                                  f"{e.strerror or e}") from e
         finally:
-            if tmp.exists():
-                tmp.unlink()
+            try:
+                tmp.unlink()     # still there only if the write or the rename failed
+            except FileNotFoundError:
+                pass
+            except OSError:      # e.g. the folder went read-only: the name is never read anyway
+                pass
         return final
 
     # ------------------------------------------------------------------- read
@@ -219,18 +286,19 @@ class WakeCache:
         p = self.path(key)
         if not p.exists():
             return None
+        read = {}
         try:
             try:
-                value = self._read(p, key, kind)
+                value = self._read(p, key, kind, read)
             except _LegacyEntry as legacy:
                 value = self._migrate(p, key, kind, check, legacy.args[0])
             if check is not None:
                 check(value)
         except _BadEntry as e:
-            self._discard(p, str(e))
+            self._discard(p, str(e), read.get("identity"))
             return None
         except WakeCacheError as e:
-            self._discard(p, f"wrong contents: {e}")
+            self._discard(p, f"wrong contents: {e}", read.get("identity"))
             return None
         return value
 
@@ -253,22 +321,37 @@ class WakeCache:
             check(value)
         except WakeCacheError as e:
             raise _BadEntry(f"older-format entry with wrong contents: {e}") from None
-        self.store(key, value, kind=kind, check=check)
+        try:
+            self.store(key, value, kind=kind, check=check)
+        except CacheWriteError as e:
+            if not e.no_space:
+                raise
+            # the old file still holds the value: serve it, rewrite it another time
+            warnings.warn(f"wake cache entry {p} is in the older unchecked format and could not be "
+                          f"rewritten ({e}); it is used as it is", CacheStoreWarning, stacklevel=4)
+            return value
         warnings.warn(f"wake cache entry {p} was in the older unchecked format; it passed the "
                       "content checks and was rewritten with a checksum", CacheWarning, stacklevel=4)
         return value
 
-    def _discard(self, p, why):
+    def _discard(self, p, why, identity=None):
         warnings.warn(f"wake cache entry {p} is unusable ({why}); recomputing it",
                       CacheWarning, stacklevel=3)
         try:
+            # another process may have replaced the bad file by a good entry since it
+            # was read: delete only the file that failed (same inode, size and time)
+            if identity is not None and _identity(os.stat(p)) != identity:
+                return
             p.unlink()
         except OSError:
             pass
 
-    def _read(self, p, key, kind):
+    def _read(self, p, key, kind, read=None):
         try:
-            blob = p.read_bytes()
+            with open(p, "rb") as f:
+                if read is not None:
+                    read["identity"] = _identity(os.fstat(f.fileno()))
+                blob = f.read()
         except OSError as e:
             raise _BadEntry(f"unreadable: {e}") from None
         if not blob.startswith(_MAGIC):
@@ -299,6 +382,11 @@ class WakeCache:
             return pickle.loads(payload)
         except Exception as e:   # checksum passed, so this is a version mismatch of a library
             raise _BadEntry(f"cannot be unpickled ({type(e).__name__}: {e})") from None
+
+
+def _identity(st):
+    """What tells one file from another put at the same path (an os.stat result)."""
+    return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
 
 
 class _BadEntry(Exception):

@@ -30,6 +30,19 @@ process as each result arrives; a worker writes nothing. ``initializer`` runs
 once in each local pool worker, and before every task on a Dask worker (numba's
 thread count is a per-thread setting, and a Dask worker's threads are not ours).
 
+Lost workers
+------------
+A worker process that dies while running a job (killed, out of memory) never
+hands back a partial result: the job either runs again elsewhere or fails with
+a :class:`WorkerLostError` (a RuntimeError) naming the job.  A Dask cluster
+reruns the job on another worker up to ``distributed.scheduler.allowed-failures``
+times (Dask's setting, default 3) and then fails it; a local pool cannot rerun
+anything (:class:`concurrent.futures.process.BrokenProcessPool` ends the whole
+pool) and fails every unfinished job at once.  Whatever the failure (a lost
+worker or an exception raised by the job), the jobs that had already finished
+are still yielded before the error is raised, so a caller storing results as
+they arrive keeps every finished one.
+
 The executor cannot change a result: the wake cache's code digest does not
 cover this module (see :mod:`aircraft.wake.records`).
 """
@@ -37,10 +50,11 @@ from __future__ import annotations
 
 import multiprocessing
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from urllib.parse import urlsplit
 
 __all__ = ["make_executor", "SerialExecutor", "LocalPoolExecutor", "DaskExecutor",
-           "SchedulerError", "DaskNotInstalledError"]
+           "SchedulerError", "DaskNotInstalledError", "WorkerLostError"]
 
 #: Dask communication protocols a scheduler address may name
 _PROTOCOLS = ("tcp", "tls", "ws", "wss", "ucx")
@@ -54,6 +68,33 @@ class DaskNotInstalledError(ImportError):
     """A Dask scheduler was given but ``distributed`` is not installed."""
 
 
+class WorkerLostError(RuntimeError):
+    """A worker process died (killed, out of memory) while running a job, which was not rerun.
+
+    Attributes
+    ----------
+    names : tuple of str
+        The jobs lost with it (the one a Dask cluster gave up on; every
+        unfinished job of a broken local pool, which cannot tell which one
+        its dead worker was running).
+    """
+
+    def __init__(self, message, names=()):
+        super().__init__(message)
+        self.names = tuple(names)
+
+
+def _job_names(jobs, names):
+    """``jobs`` as a list and one label per job (``names``, or ``"job <i>"``)."""
+    jobs = list(jobs)
+    if names is None:
+        return jobs, [f"job {k}" for k in range(len(jobs))]
+    names = [str(n) for n in names]
+    if len(names) != len(jobs):
+        raise ValueError(f"names: {len(names)} names for {len(jobs)} jobs")
+    return jobs, names
+
+
 class SerialExecutor:
     """Runs every job in this process, in order."""
 
@@ -65,7 +106,7 @@ class SerialExecutor:
     def __exit__(self, *exc):
         return False
 
-    def map_unordered(self, fn, jobs):
+    def map_unordered(self, fn, jobs, names=None):
         """Yield ``fn(job)`` for each job.
 
         Parameters
@@ -74,6 +115,8 @@ class SerialExecutor:
             Called as ``fn(job)``.
         jobs : iterable
             The jobs.
+        names : sequence of str, optional
+            Unused (no worker can be lost); accepted for a common interface.
 
         Yields
         ------
@@ -111,7 +154,7 @@ class LocalPoolExecutor:
         self._pool.shutdown(wait=True, cancel_futures=True)
         return False
 
-    def map_unordered(self, fn, jobs):
+    def map_unordered(self, fn, jobs, names=None):
         """Yield ``fn(job)`` for each job as it finishes.
 
         Parameters
@@ -120,15 +163,44 @@ class LocalPoolExecutor:
             A picklable (module-level) function, called as ``fn(job)`` in a worker.
         jobs : iterable
             Picklable jobs.
+        names : sequence of str, optional
+            One label per job, for the error naming the jobs a dead worker lost.
 
         Yields
         ------
         object
             ``fn(job)``, in completion order.
+
+        Raises
+        ------
+        WorkerLostError
+            A worker process died: the pool is broken and every unfinished job
+            is lost (named in the message); the finished ones were yielded first.
+        Exception
+            The exception a job raised, after the finished jobs were yielded.
         """
-        futures = [self._pool.submit(fn, job) for job in jobs]
+        jobs, names = _job_names(jobs, names)
+        futures = {self._pool.submit(fn, job): name for job, name in zip(jobs, names)}
+        handed = set()
         for fut in as_completed(futures):
-            yield fut.result()
+            if fut.exception() is None:
+                handed.add(fut)
+                yield fut.result()
+                continue
+            # hand over every job that did finish before reporting the failure
+            for other, _ in list(futures.items()):
+                if other not in handed and other.done() and not other.cancelled() \
+                        and other.exception() is None:
+                    handed.add(other)
+                    yield other.result()
+            if isinstance(fut.exception(), BrokenProcessPool):
+                lost = [name for f, name in futures.items() if f not in handed]
+                raise WorkerLostError(
+                    f"a worker process of the local pool died (killed by a signal, or out of "
+                    f"memory?) while running one of {lost}; the pool cannot rerun them: none of "
+                    f"these has a result ({len(handed)} finished job(s) were handed over first).",
+                    lost) from fut.exception()
+            fut.result()     # re-raises the job's own exception
 
 
 def _import_distributed():
@@ -198,6 +270,12 @@ class DaskExecutor:
     ``dask worker tcp://host:8786 --nworkers <cores> --nthreads 1``. The workers
     need this package (the same version: :func:`aircraft.wake.run_sweeps`
     refuses results from other wake code) but not the caller's filesystem.
+
+    A worker that dies takes every task it holds with it, and the scheduler
+    counts the death against each of them (``allowed-failures``): set
+    ``distributed.scheduler.worker-saturation: 1.0`` on the scheduler so a
+    one-thread worker holds only the task it runs, and a job that keeps
+    killing its workers is the one named by :class:`WorkerLostError`.
     """
 
     name = "dask"
@@ -244,7 +322,7 @@ class DaskExecutor:
         self._client = None
         return False
 
-    def map_unordered(self, fn, jobs):
+    def map_unordered(self, fn, jobs, names=None):
         """Yield ``fn(job)`` for each job as it finishes on the cluster.
 
         Parameters
@@ -253,25 +331,62 @@ class DaskExecutor:
             A module-level function importable on the workers, called as ``fn(job)``.
         jobs : iterable
             Picklable jobs.
+        names : sequence of str, optional
+            One label per job, for the error naming a job the cluster gave up on.
 
         Yields
         ------
         object
-            ``fn(job)``, in completion order. A failed task raises its exception
-            here and the tasks not yet finished are cancelled.
+            ``fn(job)``, in completion order. A task whose worker died is rerun
+            on another worker by Dask (up to its ``allowed-failures``).
+
+        Raises
+        ------
+        WorkerLostError
+            The workers running a job died more often than Dask allows
+            (``distributed.KilledWorker``); the message names the job.
+        Exception
+            The exception a task raised.
+
+        Notes
+        -----
+        On a failure, the jobs already finished are yielded first, then the error
+        is raised and the tasks not yet finished are cancelled.
         """
         distributed = _import_distributed()
         client = self._client
         if client is None:
             raise RuntimeError("DaskExecutor.map_unordered must be called inside `with executor:`")
+        jobs, names = _job_names(jobs, names)
         futures = [client.submit(_run_task, self.initializer, fn, job, pure=False) for job in jobs]
+        name_of = dict(zip(futures, names))
         pending = set(futures)
         try:
             for fut in distributed.as_completed(futures, loop=client.loop):
-                result = fut.result()
+                if fut.status == "finished":
+                    result = fut.result()
+                    pending.discard(fut)
+                    fut.release()   # the result is here now: free it on the cluster
+                    yield result
+                    continue
+                # a failure: first hand over every task that did finish
                 pending.discard(fut)
-                fut.release()   # the result is here now: free it on the cluster
-                yield result
+                for other in [f for f in futures if f in pending and f.status == "finished"]:
+                    result = other.result()
+                    pending.discard(other)
+                    other.release()
+                    yield result
+                try:
+                    fut.result()
+                except distributed.KilledWorker as e:
+                    allowed = getattr(e, "allowed_failures", None)
+                    tries = ("on every try the scheduler allows" if allowed is None else
+                             f"on each of its {allowed + 1} tries")
+                    raise WorkerLostError(
+                        f"job {name_of[fut]!r}: the Dask worker running it died (killed, or out of "
+                        f"memory?) {tries} (distributed.scheduler.allowed-failures); it has no "
+                        f"result.",
+                        [name_of[fut]]) from e
         finally:
             if pending:
                 client.cancel(list(pending))

@@ -9,7 +9,14 @@ machine's filesystem, write nothing), and checked (schema, code version, key,
 length, SHA-256, finite values) on every read, so a sweep set killed midway and
 started again reuses every finished run, recomputes only the rest and never
 reads a partial file; a bad entry is reported with a
-:class:`~aircraft.wake.cache.CacheWarning` and recomputed. Where the runs
+:class:`~aircraft.wake.cache.CacheWarning` and recomputed. Faults end in a
+correct result or a clear error, never in a bad entry: two processes filling
+the same entry both get whole, checked files (the last one written wins); a
+worker killed mid-run is rerun elsewhere by a Dask cluster or ends the sweep
+with a :class:`~aircraft.wake.executor.WorkerLostError` naming the lost runs
+(the finished ones are stored first); a full disk turns each store into a
+:class:`~aircraft.wake.cache.CacheStoreWarning` and the computed runs are
+still returned. Where the runs
 execute (this process, a local pool, a Dask cluster) is the executor's
 business (:mod:`aircraft.wake.executor`) and cannot change a result or a key.
 
@@ -23,13 +30,15 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
+import warnings
 from dataclasses import dataclass, asdict
 from pathlib import Path
 
 import numpy as np
 
 from .._validation import real as _real
-from .cache import WakeCache, WakeCacheError, _finite_tree, check_finite_frame, resolve_cache_dir
+from .cache import (CacheStoreWarning, CacheWriteError, WakeCache, WakeCacheError, _finite_tree,
+                    check_finite_frame, resolve_cache_dir)
 from .executor import make_executor
 from .records import _run_spec, _trim   # noqa: F401 - looked up here at call time (tests patch them)
 
@@ -369,6 +378,25 @@ def _worker(args):
     return spec.name, df, _code_identity()
 
 
+def _store(cache, key, value, kind, check, what):
+    """Store ``value``, or on a full disk warn (:class:`CacheStoreWarning`) and carry on.
+
+    A sweep must not lose hours of computed runs because the cache has no room
+    left: the value is still returned to the caller, only not cached.  Any other
+    write failure (a read-only or vanished folder) is a set-up error and raised.
+    """
+    if cache is None:
+        return
+    try:
+        cache.store(key, value, kind=kind, check=check)
+    except CacheWriteError as e:
+        if not e.no_space:
+            raise
+        warnings.warn(f"{what} is computed but not cached: {e}. Free space in "
+                      f"{cache.directory} (or set cache_dir) to keep results", CacheStoreWarning,
+                      stacklevel=3)
+
+
 def _control_names(config):
     """Swashplate controls, then the prescribed tip-path-plane inputs (rigid-flap wakes)."""
     from ..inflow.base import rotor_suffix
@@ -428,12 +456,23 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     WakeCacheError
         A worker ran other wake code (its code digest or kernel backend differs
         from this process's); its result is not stored.
+    WorkerLostError
+        A worker process died while running a record and it was not rerun (a
+        local pool cannot; a Dask cluster gave up after its allowed failures);
+        the message names the records without a result. Every run finished
+        before is in the cache, so calling again computes only the rest.
+    CacheWriteError
+        The cache folder cannot be written for a reason other than a full disk
+        (read-only, vanished); an OSError.
 
     Warns
     -----
     CacheWarning
         A cache entry was corrupt, truncated, stale or held the wrong contents; it
         is recomputed.
+    CacheStoreWarning
+        The disk is full: a computed run (or the trim) could not be cached; it is
+        returned all the same.
     """
     from tqdm.auto import tqdm
     from ..configs import AircraftConfig
@@ -501,8 +540,7 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
                 f"run_sweeps: the wake trim did not converge in {trim_result.iterations} iterations "
                 f"(largest load residual {trim_result.residual:.3g}); refusing to run sweeps from "
                 "it. Loosen tol, raise max_iter, or check the thrust target.", trim_result)
-        if cache is not None:
-            cache.store(trim_key, (snap, trim_result), kind="trim", check=_check_trim)
+        _store(cache, trim_key, (snap, trim_result), "trim", _check_trim, "the wake trim")
     else:
         snap, trim_result = cached_trim
     jobs = [(config, settings, flight, snap, trim_result, s, points) for s in todo]
@@ -515,16 +553,16 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     try:
         if jobs:
             with executor:
-                for name, df, worker_identity in executor.map_unordered(_worker, jobs):
+                names = [job[5].name for job in jobs]
+                for name, df, worker_identity in executor.map_unordered(_worker, jobs, names=names):
                     if worker_identity != identity:
                         raise WakeCacheError(
                             f"run {name!r} was computed by other wake code or another Biot-Savart "
                             f"backend (worker: digest {worker_identity[0][:12]}, kernel "
                             f"{worker_identity[1]!r}; this process: {identity[0][:12]}, "
                             f"{identity[1]!r}); install the same version on the workers. Not stored.")
-                    if cache is not None:
-                        # stored here, as each run arrives: a kill later loses nothing finished
-                        cache.store(keys[name], df, kind="run", check=_check_run(by_name[name]))
+                    # stored here, as each run arrives: a kill later loses nothing finished
+                    _store(cache, keys[name], df, "run", _check_run(by_name[name]), f"run {name!r}")
                     results[name] = df
                     bar.update()
     finally:
