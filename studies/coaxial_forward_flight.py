@@ -120,10 +120,10 @@ def main(argv=None):
     pd.set_option("display.width", 200)
     settings, structure = settings_for(args.small, args.sweep_s, not args.no_reduce, args.near_wake_only)
     config = coaxial_compound(cruise=True)
-    ct_total = aircraft_thrust_at(config, lateral_cyclic_difference=args.lateral_cyclic_difference)
+    ct = aircraft_thrust_at(config, lateral_cyclic_difference=args.lateral_cyclic_difference)
     dlat = args.lateral_cyclic_difference
     los = (0.0, 0.0) if args.balanced_wake else aircraft_lift_offset(config, lateral_cyclic_difference=dlat)
-    model = identify_coaxial_forward(config, ct_total=ct_total, structure=structure, settings=settings,
+    model = identify_coaxial_forward(config, ct=ct, structure=structure, settings=settings,
                                      n_jobs=args.jobs, progress=False, cache_dir=None if args.no_cache else "default",
                                      max_reduction_steps=args.max_reduction_steps, lift_offset=los,
                                      reduction_batch=args.reduction_batch)
@@ -150,7 +150,7 @@ def main(argv=None):
     ws = settings.wake_settings
     print(f"wake: {math.degrees(ws.azimuth_step):g} deg steps, {ws.wake_revolutions:g} revs, "
           f"{ws.n_elements} elements; sweeps {settings.sweep_s:g} s; structure {structure!r}")
-    print(f"wake trim (system C_T {ct_total:.5f} from the aircraft trim): C_T U/L {o['CT_U']:.5f}/{o['CT_L']:.5f}"
+    print(f"wake trim (system C_T {ct:.5f} from the aircraft trim): C_T U/L {o['CT_U']:.5f}/{o['CT_L']:.5f}"
           f" (dissertation ~0.0073/0.0065), lam0 U/L {o['lam0_U']:.4f}/{o['lam0_L']:.4f}")
     print(f"lift offset: target U/L {los[0]:.3f}/{los[1]:.3f} (the aircraft's at {dlat:g} rad "
           f"differential lateral cyclic{'; not used, --balanced-wake' if args.balanced_wake else ''}), "

@@ -166,7 +166,7 @@ def roll_derivatives(systems, omega=DERIVATIVE_OMEGA):
     return pd.DataFrame(rows)
 
 
-def derivative_figure(derivs, fit_band=(1.0, 25.0)):
+def derivative_figure(derivs, fit_range=(1.0, 25.0)):
     """Re L_p and |L_delta_lat| against frequency, the identified models' fit band shaded."""
     fig = Figure(figsize=(10, 4), constrained_layout=True)
     ax_p, ax_d = fig.subplots(1, 2)
@@ -174,7 +174,7 @@ def derivative_figure(derivs, fit_band=(1.0, 25.0)):
         ax_p.semilogx(d.omega_rad_s, d.Lp_real_1_s, label=name)
         ax_d.semilogx(d.omega_rad_s, np.hypot(d.Ldelta_real, d.Ldelta_imag), label=name)
     for ax in (ax_p, ax_d):
-        ax.axvspan(*fit_band, color="0.9", zorder=0)
+        ax.axvspan(*fit_range, color="0.9", zorder=0)
         ax.set_xlabel("frequency [rad/s] (shaded: identified models' fit band)")
         ax.grid(True, which="both", alpha=0.3)
     ax_p.axhline(0.0, color="k", lw=0.8)

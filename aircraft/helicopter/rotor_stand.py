@@ -3,7 +3,7 @@
 ::
 
     stand = ShaftFixedRotors(config, inflow)    # body held still, flap + inflow free
-    stand.trim(ct_total)                        # collectives: total thrust, equal torques
+    stand.trim(ct)                        # collectives: total thrust, equal torques
     df = stand.run({"theta0_U": (t, u)}, duration)   # same columns as aircraft.wake.run_wake
 
 This is the blade-element rotor of :class:`~aircraft.helicopter.Helicopter`
@@ -68,12 +68,12 @@ class ShaftFixedRotors:
     def _rhs(self, z, u):
         return self.heli.derivatives(self._full(z), u)[9:]
 
-    def trim(self, ct_total=None, tol=1e-10):
+    def trim(self, ct=None, tol=1e-10):
         """Collective(s) for the total thrust (coaxial: and equal torques), flap and inflow steady.
 
         Parameters
         ----------
-        ct_total : float, optional
+        ct : float, optional
             Total thrust coefficient (sum over rotors). Default ``sum(config.trim_ct)``.
         tol : float
             Largest scaled residual accepted.
@@ -85,7 +85,7 @@ class ShaftFixedRotors:
         """
         heli, cfg = self.heli, self.config
         nrot = len(heli.rotors)
-        ct_total = float(sum(cfg.trim_ct)) if ct_total is None else float(ct_total)
+        ct = float(sum(cfg.trim_ct)) if ct is None else float(ct)
         omega = heli.rotors[0].config.omega
         heli.inflow.release_trim()
         n_in = heli.n_states - self.n_rigid
@@ -109,18 +109,18 @@ class ShaftFixedRotors:
             res = [xdot[9 + 8 * r + 4:9 + 8 * r + 8] / omega ** 2 for r in range(nrot)]
             res.append(xdot[self.n_rigid:] / omega)
             loads = extra["loads"]
-            res.append([(sum(loads[3 * r] for r in range(nrot)) - ct_total) / ct_total])
+            res.append([(sum(loads[3 * r] for r in range(nrot)) - ct) / ct])
             if nrot == 2:
                 res.append([(extra["CQ_U"] - extra["CQ_L"]) / max(abs(extra["CQ_U"]), 1e-6)])
             return np.concatenate([np.ravel(r) for r in res])
 
         rc = heli.rotors[0].config
-        ct = ct_total / nrot
-        th0 = 6 * ct / (rc.solidity * rc.lift_slope) + 1.5 * np.sqrt(ct / 2) - 0.75 * rc.twist
+        ct_rotor = ct / nrot
+        th0 = 6 * ct_rotor / (rc.solidity * rc.lift_slope) + 1.5 * np.sqrt(ct_rotor / 2) - 0.75 * rc.twist
         v0 = np.concatenate([[th0] * nrot, np.tile([0.02, 0, 0, 0], nrot),
                              np.zeros(n_in)])
         ops = heli._ops(np.zeros(heli.n_states))
-        v0[nrot + 4 * nrot:] = heli.inflow.steady_state(np.tile([ct, 0.0, 0.0], nrot), ops)
+        v0[nrot + 4 * nrot:] = heli.inflow.steady_state(np.tile([ct_rotor, 0.0, 0.0], nrot), ops)
         sol = least_squares(residual, v0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=4000)
         r = residual(sol.x)
         if not np.all(np.isfinite(r)) or np.max(np.abs(r)) > tol:

@@ -115,12 +115,12 @@ def aircraft_lift_offset(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, la
     return tuple(round(-float(tr.loads[f"CL_{r}"]) / float(tr.loads[f"CT_{r}"]), 3) + 0.0 for r in ("U", "L"))
 
 
-def forward_trim_request(ct_total, *, lift_offset=0.0, tol=1e-4, max_iter=30):
+def forward_trim_request(ct, *, lift_offset=0.0, tol=1e-4, max_iter=30):
     """The wake trim request at 200 kt (keyword arguments of :func:`aircraft.wake.trim_wake`).
 
     Parameters
     ----------
-    ct_total : float
+    ct : float
         System thrust coefficient [-], split equally (the torque balance sets the split).
     tol : float
         Residual tolerance [-] (1e-4: the coaxial's revolution-averaged scatter).
@@ -141,11 +141,11 @@ def forward_trim_request(ct_total, *, lift_offset=0.0, tol=1e-4, max_iter=30):
     Raises
     ------
     ValueError
-        If ``ct_total`` is not a positive finite number, or a lift offset is not
+        If ``ct`` is not a positive finite number, or a lift offset is not
         a finite number in [-0.5, 0.5].
     """
     from aircraft._validation import real
-    c = real(ValueError, "ct_total", ct_total, positive=True, hi=0.1)
+    c = real(ValueError, "ct", ct, positive=True, hi=0.1)
     los = lift_offset if isinstance(lift_offset, (tuple, list, np.ndarray)) else (lift_offset, lift_offset)
     if len(los) != 2:
         raise ValueError(f"lift_offset needs one value or two (upper, lower), got {len(los)}")
@@ -156,7 +156,7 @@ def forward_trim_request(ct_total, *, lift_offset=0.0, tol=1e-4, max_iter=30):
     return request
 
 
-def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, ct_total=None,
+def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, ct=None,
                              structure=None, settings=None, n_jobs=2, cache_dir="default", progress=True,
                              name=None, max_reduction_steps=100, lift_offset=0.0, reduction_batch=1):
     """Identify the 200 kt coaxial inflow model (Eq. 6.5 structure) from our free wake.
@@ -169,7 +169,7 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         Flight speed [m/s] (default 200 kt).
     rotor_aoa : float
         Rotor angle of attack [rad] (default 2 deg).
-    ct_total : float, optional
+    ct : float, optional
         System thrust coefficient of the wake trim [-]; default
         :func:`aircraft_thrust_at` (what the aircraft needs there).
     structure : CoaxialForward12State, optional
@@ -217,10 +217,10 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     if isinstance(max_reduction_steps, bool) or not isinstance(max_reduction_steps, int) \
             or max_reduction_steps < 0:
         raise ValueError(f"max_reduction_steps must be an integer >= 0, got {max_reduction_steps!r}")
-    if ct_total is None:
-        ct_total = aircraft_thrust_at(config, speed, rotor_aoa)
+    if ct is None:
+        ct = aircraft_thrust_at(config, speed, rotor_aoa)
     condition = flight_condition(speed=_speed(speed), alpha=float(rotor_aoa))
-    request = forward_trim_request(ct_total, lift_offset=lift_offset)
+    request = forward_trim_request(ct, lift_offset=lift_offset)
     name = name or f"coaxial {speed / 0.514444:.0f} kt {structure.key} from our wake"
     # the pipeline fits once; the reduction (one refit per removal, 180 parameters at
     # the start) runs here so that its number of steps can be bounded

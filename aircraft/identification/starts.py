@@ -5,7 +5,7 @@ block is linear in the parameters::
 
     H(j omega)^-1 = Lbar + j (omega/Omega) M
 
-so its imaginary part over a band gives ``M`` by linear least squares (the
+so its imaginary part over a band of frequencies gives ``M`` by linear least squares (the
 *equation error*), without the nonlinear CIFER cost and its local optima. The
 delays bias the estimate (``H^-1`` carries ``exp(+j omega tau)``), by a few
 hundredths here; the CIFER fit started from it removes the bias.
@@ -28,7 +28,7 @@ import numpy as np
 __all__ = ["equation_error_start", "equation_error_masses"]
 
 
-def equation_error_masses(lam_over_c, omega, outputs, inputs, band=(1.0, 10.0)):
+def equation_error_masses(lam_over_c, omega, outputs, inputs, fit_range=(1.0, 10.0)):
     """The equation-error apparent-mass matrix of a square measured block.
 
     Parameters
@@ -39,7 +39,7 @@ def equation_error_masses(lam_over_c, omega, outputs, inputs, band=(1.0, 10.0)):
         Rotor speed [rad/s] (``M`` multiplies d/dpsi, azimuth time).
     outputs, inputs : list of str
         The square block (inflow states and their loads, in model order).
-    band : (float, float)
+    fit_range : (float, float)
         Frequencies used [rad/s]; every response frequency inside it.
 
     Returns
@@ -51,10 +51,10 @@ def equation_error_masses(lam_over_c, omega, outputs, inputs, band=(1.0, 10.0)):
     Raises
     ------
     ValueError
-        Bad ``omega``, a block that is not square, or a band with fewer than two
+        Bad ``omega``, a block that is not square, or a fit_range with fewer than two
         response frequencies.
     numpy.linalg.LinAlgError
-        The measured block is singular at a frequency of the band.
+        The measured block is singular at a frequency of the fit_range.
     """
     if not (np.isfinite(omega) and omega > 0):
         raise ValueError(f"omega must be a positive rotor speed [rad/s], got {omega!r}")
@@ -63,20 +63,20 @@ def equation_error_masses(lam_over_c, omega, outputs, inputs, band=(1.0, 10.0)):
     oi = [lam_over_c.output_labels.index(o) for o in outputs]
     ii = [lam_over_c.input_labels.index(i) for i in inputs]
     w = np.asarray(lam_over_c.omega, dtype=float)
-    sel = np.flatnonzero((w >= band[0]) & (w <= band[1]))
+    sel = np.flatnonzero((w >= fit_range[0]) & (w <= fit_range[1]))
     if sel.size < 2:
-        raise ValueError(f"equation-error band {tuple(band)} rad/s holds {sel.size} frequencies of the "
+        raise ValueError(f"equation-error fit_range {tuple(fit_range)} rad/s holds {sel.size} frequencies of the "
                          f"response ({w.min():.3g}-{w.max():.3g} rad/s); need at least 2")
     h = np.moveaxis(lam_over_c.frdata[np.ix_(oi, ii)][:, :, sel], -1, 0)      # (n_w, n, n)
     try:
         h_inv = np.linalg.inv(h)
     except np.linalg.LinAlgError as err:
-        raise np.linalg.LinAlgError("measured lambda/C is singular in the equation-error band") from err
+        raise np.linalg.LinAlgError("measured lambda/C is singular in the equation-error fit_range") from err
     x = w[sel] / omega
     return np.tensordot(x, h_inv.imag, axes=(0, 0)) / float(x @ x)
 
 
-def equation_error_start(structure, lam_over_c, omega, band=(1.0, 10.0), n_points=3, coherence_min=None):
+def equation_error_start(structure, lam_over_c, omega, fit_range=(1.0, 10.0), n_points=3, coherence_min=None):
     """A start of an M/Lbar/tau structure with ``M`` from the equation error.
 
     ``Lbar`` and the delays are those of ``structure.initial_values`` (the inverted
@@ -92,8 +92,8 @@ def equation_error_start(structure, lam_over_c, omega, band=(1.0, 10.0), n_point
     lam_over_c : flightid.MeasuredResponse
     omega : float
         Rotor speed [rad/s].
-    band : (float, float)
-        Equation-error band [rad/s].
+    fit_range : (float, float)
+        Equation-error fit_range [rad/s].
     n_points, coherence_min
         Passed to ``structure.initial_values``.
 
@@ -106,12 +106,12 @@ def equation_error_start(structure, lam_over_c, omega, band=(1.0, 10.0), n_point
     Raises
     ------
     ValueError
-        A structure that is not of the M/Lbar/tau form, or a band without data.
+        A structure that is not of the M/Lbar/tau form, or a fit_range without data.
     """
     if getattr(structure, "form", None) != "mltau":
         raise ValueError(f"equation_error_start needs an M/Lbar/tau structure, got {structure!r}")
     values = dict(structure.initial_values(lam_over_c, n_points, coherence_min))
-    m_eff = equation_error_masses(lam_over_c, omega, structure.outputs, structure.inputs, band)
+    m_eff = equation_error_masses(lam_over_c, omega, structure.outputs, structure.inputs, fit_range)
     # the pattern's references (row, column, name, sign) say where each M parameter sits
     refs = structure.build(values, omega)._patterns["M"].refs
     sums, counts = {}, {}

@@ -111,7 +111,7 @@ class WakeDistortionResult:
         Lbar22 used in Eq. 4.18 [-].
     lbar_source : str
         ``"pitt_peters"`` (-sqrt(C_T/2), Eq. 4.19) or ``"identified"``.
-    band : (float, float)
+    fit_range : (float, float)
         Band of the constant fit [rad/s].
     coherence_min : float
         Points below this coherence get no weight.
@@ -129,7 +129,7 @@ class WakeDistortionResult:
     table: pd.DataFrame
     lbar22: float
     lbar_source: str
-    band: tuple
+    fit_range: tuple
     coherence_min: float
     rotor_omega: float
     ct: float
@@ -141,7 +141,7 @@ class WakeDistortionResult:
 
     def _in_band(self, axis=None):
         t = self.table
-        sel = (t.omega >= self.band[0]) & (t.omega <= self.band[1])
+        sel = (t.omega >= self.fit_range[0]) & (t.omega <= self.fit_range[1])
         if axis is not None:
             sel &= t.axis == axis
         return t[sel]
@@ -150,19 +150,19 @@ class WakeDistortionResult:
         t = self._in_band(axis)
         w = _weights(t.coherence.to_numpy(), self.coherence_min)
         if not w.sum() > 0:
-            raise ValueError(f"no K_R point in {self.band} rad/s has coherence >= {self.coherence_min}")
+            raise ValueError(f"no K_R point in {self.fit_range} rad/s has coherence >= {self.coherence_min}")
         vals = np.abs(t.kr.to_numpy()) if magnitude else np.real(t.kr.to_numpy())
         # real K minimising sum w |K_R(omega) - K|^2 is the weighted mean of Re K_R
         return float(np.sum(w * vals) / np.sum(w))
 
     @property
     def kr_constant(self) -> float:
-        """Best real constant over the band, both axes (weighted least squares) [-]."""
+        """Best real constant over the fit range, both axes (weighted least squares) [-]."""
         return self._constant()
 
     @property
     def kr_magnitude_mean(self) -> float:
-        """Coherence-weighted mean of |K_R(omega)| over the band, both axes [-]."""
+        """Coherence-weighted mean of |K_R(omega)| over the fit range, both axes [-]."""
         return self._constant(magnitude=True)
 
     def _low_points(self, axis):
@@ -193,14 +193,14 @@ class WakeDistortionResult:
             ``low_frequency_points_coherence_mean`` of the averaged points, and their
             mean ``re_kr_low_frequency_points`` [-] (NaN, not averaged, when an axis has
             no coherent point); beside them ``omega_band_bottom`` [rad/s], the first
-            frequency of the band, with its ``kr_magnitude_band_bottom`` [-] and
+            frequency of the fit range, with its ``kr_magnitude_band_bottom`` [-] and
             ``coherence_band_bottom`` (which may be below the threshold).
         """
         rows = []
         t = self.table
         for axis in sorted(set(t.axis)):
             used = self._low_points(axis)
-            a = t[(t.axis == axis) & (t.omega >= self.band[0])].sort_values("omega")
+            a = t[(t.axis == axis) & (t.omega >= self.fit_range[0])].sort_values("omega")
             bottom = a.iloc[0]
             rows.append({"axis": axis, "low_frequency_points_omega_min": used.omega.min(),
                          "low_frequency_points_omega_max": used.omega.max(),
@@ -244,7 +244,7 @@ class WakeDistortionResult:
         return pd.DataFrame({"omega": t.omega, "axis": t.axis, "kr_real": kr.real, "kr_imag": kr.imag,
                              "kr_magnitude": np.abs(kr), "kr_phase_deg": np.degrees(np.angle(kr)),
                              "coherence": t.coherence,
-                             "in_band": (t.omega >= self.band[0]) & (t.omega <= self.band[1])})
+                             "in_band": (t.omega >= self.fit_range[0]) & (t.omega <= self.fit_range[1])})
 
     def plot(self, fig=None):
         """|K_R(omega)|, its phase and the coherence per axis, with the constants (Fig. 4.39); a Figure."""
@@ -263,7 +263,7 @@ class WakeDistortionResult:
         am.axhline(KR_ANALYTICAL, color="r", ls=":", label=f"analytical (Ref. 82) {KR_ANALYTICAL:g}")
         am.axhline(1.44, color="gray", ls="-.", lw=0.8, label="dissertation Fig. 4.39: 1.44")
         for a in (am, ap, ac):
-            a.axvspan(*self.band, color="0.9", zorder=0)
+            a.axvspan(*self.fit_range, color="0.9", zorder=0)
             a.grid(True, which="both", alpha=0.3)
         am.set_ylabel("|K_R| [-]")
         ap.set_ylabel("phase [deg]")
@@ -276,10 +276,10 @@ class WakeDistortionResult:
         return fig
 
     def summary(self) -> str:
-        """Constants and band, as text."""
+        """Constants and fit range, as text."""
         c = self.constants()
         return (f"K_R from tip-path-plane sweeps (hover, C_T {self.ct:.5f}, Lbar22 {self.lbar22:.4f} "
-                f"from {self.lbar_source}, band {self.band[0]:g}-{self.band[1]:g} rad/s, wall "
+                f"from {self.lbar_source}, fit range {self.fit_range[0]:g}-{self.fit_range[1]:g} rad/s, wall "
                 f"{self.wall_s:.0f} s)\n" + c.to_string(index=False, float_format=lambda v: f"{v:.3f}"))
 
 
@@ -289,20 +289,20 @@ def _identified_lbar22(responses, n_points):
     return float(0.5 * (inv[1, 1] + inv[2, 2]))
 
 
-def _check_band(band, coherence_min):
+def _check_fit_range(fit_range, coherence_min):
     try:
-        lo, hi = (float(b) for b in band)
+        lo, hi = (float(b) for b in fit_range)
     except (TypeError, ValueError) as err:
-        raise ValueError(f"band must be (w_lo, w_hi) in rad/s, got {band!r}") from err
+        raise ValueError(f"fit_range must be (w_lo, w_hi) in rad/s, got {fit_range!r}") from err
     if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
-        raise ValueError(f"band must satisfy 0 < w_lo < w_hi [rad/s], got {band!r}")
+        raise ValueError(f"fit_range must satisfy 0 < w_lo < w_hi [rad/s], got {fit_range!r}")
     if not 0 <= coherence_min < 1:
         raise ValueError(f"coherence_min must lie in [0, 1), got {coherence_min!r}")
     return lo, hi
 
 
 def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_max=30.0, lbar="pitt_peters",
-                              band=(1.0, 10.0), coherence_min=0.6, low_frequency_points=3):
+                              fit_range=(1.0, 10.0), coherence_min=0.6, low_frequency_points=3):
     """K_R(omega) from time histories of the five §4.7 excitations (no wake needed).
 
     Parameters
@@ -323,7 +323,7 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
     lbar : {"pitt_peters", "identified"} or float
         Lbar22 of Eq. 4.18: Pitt-Peters (Eq. 4.19), the inverted low-frequency
         lambda/C of these data, or a given value.
-    band : (float, float)
+    fit_range : (float, float)
         Band of the constant K_R [rad/s].
     coherence_min : float
         Points below this coherence get no weight.
@@ -337,10 +337,10 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
     Raises
     ------
     ValueError
-        Bad ``ct``, ``band``, ``lbar``, or fewer than five excitations.
+        Bad ``ct``, ``fit_range``, ``lbar``, or fewer than five excitations.
     """
     from flightid import combine_responses, frequency_response, joint_input_output
-    band = _check_band(band, coherence_min)
+    fit_range = _check_fit_range(fit_range, coherence_min)
     if not (isinstance(ct, (int, float, np.floating)) and math.isfinite(ct) and ct > 0):
         raise ValueError(f"ct must be a positive thrust coefficient, got {ct!r}")
     controls = list(controls)
@@ -377,12 +377,12 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
     else:
         lbar22, source = float(lbar), "given"
     table = kr_frequency_response(responses, float(rotor_omega), lbar22)
-    return WakeDistortionResult(table=table, lbar22=lbar22, lbar_source=source, band=band,
+    return WakeDistortionResult(table=table, lbar22=lbar22, lbar_source=source, fit_range=fit_range,
                                 coherence_min=float(coherence_min), rotor_omega=float(rotor_omega), ct=float(ct),
                                 responses=responses, low_frequency_points=int(low_frequency_points))
 
 
-def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_peters", band=(1.0, 10.0),
+def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_peters", fit_range=(1.0, 10.0),
                              n_jobs=2, cache_dir="default", progress=True):
     """K_R(omega) of a single rotor in hover from the free wake (§4.7).
 
@@ -398,10 +398,10 @@ def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_pet
     ct : float
         Trim thrust coefficient.
     settings : IdentificationSettings, optional
-        Wake resolution, sweep length, amplitude and band (default ``IdentificationSettings()``).
+        Wake resolution, sweep length and amplitude (default ``IdentificationSettings()``).
     lbar : {"pitt_peters", "identified"} or float
         Lbar22 of Eq. 4.18 (see :func:`wake_distortion_from_runs`).
-    band : (float, float)
+    fit_range : (float, float)
         Band of the constant K_R [rad/s].
     n_jobs : int
         Wake worker processes.
@@ -428,7 +428,7 @@ def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_pet
     s = settings or IdentificationSettings()
     if getattr(s.wake_settings, "free_flapping", False):
         raise ValueError("K_R needs prescribed tip-path-plane sweeps: use a rigid-flap wake (free_flapping=False)")
-    _check_band(band, 0.6)
+    _check_fit_range(fit_range, 0.6)
     specs = [SweepSpec(c, kind="sweep", amplitude=s.amplitude, duration=s.sweep_s, w_min=s.w_min, w_max=s.w_max,
                        seed=k) for k, c in enumerate(KR_CONTROLS)]
     out = run_sweeps(config, s.wake_settings, FlightCondition(), specs, trim={"ct": float(ct)}, n_jobs=n_jobs,
@@ -438,7 +438,7 @@ def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_pet
         raise PipelineError(f"wake trim did not converge (residual {trim.residual:.2e})")
     runs = {sp.control: out[sp.name] for sp in specs}
     res = wake_distortion_from_runs(runs, list(KR_CONTROLS), float(config.rotors[0].omega), trim.outputs["CT"],
-                                    w_min=s.w_min, w_max=s.w_max, lbar=lbar, band=band,
+                                    w_min=s.w_min, w_max=s.w_max, lbar=lbar, fit_range=fit_range,
                                     coherence_min=s.coherence_min)
     res.trim = trim
     res.wall_s = time.perf_counter() - t0

@@ -122,15 +122,15 @@ def coaxial_sum_difference(responses, structure=None, w_ref=1.0):
     return t, s_inv, outs, ins, signs
 
 
-def _row(label, coordinates, res, inner, responses, rotor_pairs, fit_range, n_omega, fit_band=None,
+def _row(label, coordinates, res, inner, responses, rotor_pairs, fit_range, n_omega, row_fit_range=None,
          off_harmonic_pairs=()):
     from flightid.transformed import pair_costs
     params = res.parameters[res.parameters.status == "free"]
     ml = params[params.parameter.str[0].isin(["m", "l"])]
     rotor = pair_costs(inner, responses, rotor_pairs, fit_range, n_omega)
     vals = inner.values
-    fit_band = tuple(fit_band or fit_range)
-    row = {"fit": label, "coordinates": coordinates, "fit_band_rad_s": f"{fit_band[0]:g}-{fit_band[1]:g}",
+    row_fit_range = tuple(row_fit_range or fit_range)
+    row = {"fit": label, "coordinates": coordinates, "fit_range_rad_s": f"{row_fit_range[0]:g}-{row_fit_range[1]:g}",
            "pairs_fitted": len(res.cost_table),
            "J_ave_fitted_pairs": float(res.J_ave), "J_ave_rotor_pairs": rotor.attrs["J_ave"],
            "J_max_rotor_pair": float(rotor.J.max()), "free_parameters": len(params),
@@ -279,7 +279,7 @@ def six_state_diagnostics(responses, omega, *, fit_range=(1.0, 25.0), n_omega=20
     upper = reduce(axi.build(values, omega, fixed=("m11", "m44")), responses, protected=axi.protected,
                    pairs=rotor_pairs + off_pairs, **dict(kw, frequency_ranges=high)).result
     r, c = _row(f"axisymmetric, {high[0]:g}-{high[1]:g} rad/s, collective M diagonal fixed (a priori), reduced",
-                "rotor", upper, upper.structure, responses, rotor_pairs, fit_range, n_omega, fit_band=high,
+                "rotor", upper, upper.structure, responses, rotor_pairs, fit_range, n_omega, row_fit_range=high,
                 off_harmonic_pairs=off_pairs)
     rows.append(r)
     costs.append(c)

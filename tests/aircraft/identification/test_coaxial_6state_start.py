@@ -102,7 +102,7 @@ def test_equation_error_start_recovers_exact_data():
 def test_equation_error_start_rejects_bad_input():
     st, data = _exact_data()
     with pytest.raises(ValueError, match="equation-error band"):
-        equation_error_start(st, data, OMEGA, band=(40.0, 50.0))
+        equation_error_start(st, data, OMEGA, fit_range=(40.0, 50.0))
     with pytest.raises(ValueError, match="positive rotor speed"):
         equation_error_start(st, data, -1.0)
     with pytest.raises(ValueError, match="square"):

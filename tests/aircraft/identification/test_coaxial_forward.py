@@ -160,7 +160,7 @@ def test_trim_request_and_condition():
     from aircraft.configs import coaxial_compound
     rot = coaxial_compound(cruise=True).rotors[0]
     assert SPEED_200KT * math.cos(fc.alpha) / (rot.omega * rot.radius) == pytest.approx(0.54, abs=0.01)
-    with pytest.raises(ValueError, match="ct_total"):
+    with pytest.raises(ValueError, match="ct"):
         forward_trim_request(-0.01)
     # a lift offset joins the request only when it is not zero (cached balanced runs stay valid)
     assert "lift_offset" not in forward_trim_request(0.01248, lift_offset=0.0)

@@ -158,7 +158,7 @@ def _synthetic_runs(kr, lag=None, T=45.0, dt=0.01):
 
 def test_kr_of_a_known_pitt_peters_model_is_recovered():
     runs = _synthetic_runs(KR_ANALYTICAL)
-    res = wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, band=(1.0, 10.0))
+    res = wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, fit_range=(1.0, 10.0))
     band = res.table[(res.table.omega >= 1) & (res.table.omega <= 10)]
     assert set(band.axis) == {"1s", "1c"} and len(band) > 20
     # noise-free data through the chirp-z windows: the estimate is within 3 % pointwise
@@ -180,7 +180,7 @@ def test_kr_of_a_known_pitt_peters_model_is_recovered():
 def test_frequency_dependent_kr_is_resolved():
     a = 4.0
     runs = _synthetic_runs(1.2, lag=a)
-    res = wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, band=(1.0, 10.0))
+    res = wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, fit_range=(1.0, 10.0))
     band = res.table[(res.table.omega >= 1.5) & (res.table.omega <= 10)]
     truth = 1.2 * a / (1j * band.omega.to_numpy() + a)
     # complex match within 3 % of |K_R| from 1.5 rad/s (measured < 1 %; below that the
@@ -210,8 +210,8 @@ def test_bad_input_is_refused_with_clear_messages():
     runs = _synthetic_runs(1.0, T=20.0)
     with pytest.raises(ValueError, match="five excitations"):
         wake_distortion_from_runs(runs, KR_CONTROLS[:4], OMEGA, CT)
-    with pytest.raises(ValueError, match="band"):
-        wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, band=(10.0, 1.0))
+    with pytest.raises(ValueError, match="fit_range"):
+        wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, fit_range=(10.0, 1.0))
     with pytest.raises(ValueError, match="lbar"):
         wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, lbar="guess")
     with pytest.raises(ValueError, match="ct"):

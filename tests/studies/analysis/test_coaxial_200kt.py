@@ -15,9 +15,9 @@ def test_isolated_rotor_check_bad_input_and_single_rotor():
     with pytest.raises(ValueError, match="thresholds"):
         isolated_rotor_check({"x": object()}, threshold_db=0.0)
     with pytest.raises(ValueError, match="coaxial"):
-        identify_coaxial_forward(uh60_single_rotor(), ct_total=0.0124)
+        identify_coaxial_forward(uh60_single_rotor(), ct=0.0124)
     with pytest.raises(TypeError, match="CoaxialForward12State"):
-        identify_coaxial_forward(structure="coaxial_6state", ct_total=0.0124)
+        identify_coaxial_forward(structure="coaxial_6state", ct=0.0124)
 
 
 def test_isolated_rotor_check_against_itself_and_the_printed_model():

@@ -131,7 +131,7 @@ def test_six_state_diagnostics_fits_the_axisymmetric_rows_on_their_own_data():
     _, data = _exact_data()
     summary, pairs = six_state_diagnostics(data, OMEGA, feedthrough_max_nfev=20)
     rows = summary[summary.fit.str.startswith("axisymmetric")]
-    assert len(rows) >= 2 and rows.iloc[-1].fit_band_rad_s == "4-25"
+    assert len(rows) >= 2 and rows.iloc[-1].fit_range_rad_s == "4-25"
     best = rows.iloc[:-1].sort_values("J_ave_fitted_pairs").iloc[0]
     assert best.pairs_fitted == 20 and best.J_ave_fitted_pairs < 1.0
     for k in ("l11", "l14", "l41", "l44", "l22", "m22"):
