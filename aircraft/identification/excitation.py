@@ -90,7 +90,7 @@ class ExcitationSettings:
         for name in ("sweep_s", "doublet_s", "noise_floor_s", "amplitude", "doublet_amplitude", "pulse_width"):
             value = getattr(self, name)
             if not (_finite(value) and value > 0):
-                raise err(f"{type(self).__name__}.{name} must be positive, got {value!r}")
+                raise err(f"{type(self).__name__}.{name} must be a positive finite number, got {value!r}")
         if isinstance(self.n_omega, bool) or not isinstance(self.n_omega, int) or self.n_omega < 3:
             raise err(f"n_omega must be an integer >= 3, got {self.n_omega!r}")
         if not (_finite(self.coherence_min) and 0 <= self.coherence_min < 1):

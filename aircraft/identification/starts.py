@@ -65,7 +65,7 @@ def equation_error_masses(lam_over_c, omega, outputs, inputs, fit_range=(1.0, 10
     w = np.asarray(lam_over_c.omega, dtype=float)
     sel = np.flatnonzero((w >= fit_range[0]) & (w <= fit_range[1]))
     if sel.size < 2:
-        raise ValueError(f"equation-error fit_range {tuple(fit_range)} rad/s holds {sel.size} frequencies of the "
+        raise ValueError(f"equation-error band {tuple(fit_range)} rad/s holds {sel.size} frequencies of the "
                          f"response ({w.min():.3g}-{w.max():.3g} rad/s); need at least 2")
     h = np.moveaxis(lam_over_c.frdata[np.ix_(oi, ii)][:, :, sel], -1, 0)      # (n_w, n, n)
     try:
