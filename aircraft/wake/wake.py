@@ -33,7 +33,10 @@ from ..inflow.base import rotor_suffix
 from .biot_savart import segment_velocity, segment_influence, core_radius
 from .outputs import blade_sum_loads, blade_sum_inflow, flap_rate_mbc, flap_mbc
 from .far_wake import far_wake_segments, initial_far_wake, convect_far_wake
+from .errors import WakeDivergedError
 from .settings import WakeSettings, FlightCondition, WakeSettingsError
+from .kinematics import near_wake_points
+from .reference import near_wake_points_reference, attached_segments_reference
 from .threads import single_threaded_blas
 
 __all__ = ["FreeVortexWake", "WakeDivergedError"]
@@ -41,10 +44,6 @@ __all__ = ["FreeVortexWake", "WakeDivergedError"]
 _CONTROL_KEYS = ("theta0", "theta1s", "theta1c")
 #: prescribed tip-path-plane (multiblade flap) inputs, rigid-flap mode only
 _FLAP_KEYS = ("beta1s", "beta1c")
-
-
-class WakeDivergedError(RuntimeError):
-    """Raised when the wake geometry or the loads become non-finite."""
 
 
 @dataclass
@@ -88,6 +87,12 @@ class FreeVortexWake:
     hover, a momentum-inflow skewed helix in forward flight) and is marched in time.
     Use :meth:`trim` to reach a periodic, trimmed wake, then :meth:`run`.
     """
+
+    #: March with the compiled/vectorised helpers (True) or the former numpy
+    #: reference (False, :mod:`aircraft.wake.reference`; same numbers, slower).
+    #: Set it on the instance before ``__init__`` (see ``reference.reference_wake``)
+    #: so that the starting wake is built the same way too.
+    _compiled = True
 
     def __init__(self, config: AircraftConfig, settings: WakeSettings | None = None,
                  flight: FlightCondition | None = None):
@@ -208,19 +213,30 @@ class FreeVortexWake:
         return psi + 2.0 * np.pi * np.arange(rot.nb) / rot.nb
 
     def _near_wake_points(self, ir, psi, beta):
-        """Rigid near-wake trailer points, shape (Nb, Ne+1, n_near+1, 3), age 0 first."""
+        """Rigid near-wake trailer points, shape (Nb, Ne+1, n_near+1, 3), age 0 first.
+
+        The march asks for the same near wake several times per step (the first
+        markers, the corrector's velocities, the blade solve); the last result per
+        rotor is kept with the state it depends on and returned while that state
+        is unchanged (do not modify the returned array).
+        """
+        if not self._compiled:
+            return near_wake_points_reference(self, ir, psi, beta)
         rot = self.rotors[ir]
+        ct = self._last[rot.name]["CT"] if self._last is not None else self._ct0[ir]
+        key = (float(psi), beta.tobytes(), float(self._lam0[ir]), float(ct))
+        hit = self._nw_cache.get(ir)
+        if hit is not None and hit[0] == key:
+            return hit[1]
         s = self.settings
         ages = np.arange(self.n_near + 1) * s.azimuth_step
-        pts = np.empty((rot.nb, rot.r_edge.size, ages.size, 3))
         # the near wake drifts with the free stream and half the rotor's mean
         # induced velocity (the tip vortex's initial descent is about that)
         drift = self.v_inf - np.array([0.0, 0.0, 0.5 * self._lam0[ir] * self.omega * rot.R])
-        contraction = self._near_wake_contraction(ir, ages)
-        for m, age in enumerate(ages):
-            p = self._blade_points(rot, self._psi_blades(rot, psi) - age, beta, rot.r_edge)
-            p[..., :2] = rot.hub[:2] + contraction[m] * (p[..., :2] - rot.hub[:2])
-            pts[:, :, m, :] = p + drift * age / self.omega
+        pts = near_wake_points(rot.hub, rot.R, rot.e, rot.d, rot.r_edge,
+                               self._psi_blades(rot, psi), beta, ages,
+                               self._near_wake_contraction(ir, ages), drift, self.omega)
+        self._nw_cache[ir] = (key, pts)
         return pts
 
     def _near_wake_contraction(self, ir, ages):
@@ -304,6 +320,9 @@ class FreeVortexWake:
                 self.far_released.append(0)
         self._first_step = True
         self._last = None
+        self._nw_cache = {}        # rotor -> (state key, near-wake points)
+        self._att_layout = None    # (core radii, gmap) of the attached segments
+        self._tip_rc = {}          # rotor -> core radii of its tip-vortex segments
         self._vbuf_mean = None
         self._solve_blades()
 
@@ -317,10 +336,14 @@ class FreeVortexWake:
             A.append(X[ir][:, :-1, :].reshape(-1, 3))
             B.append(X[ir][:, 1:, :].reshape(-1, 3))
             G.append(rot.d * 0.5 * (self.G_tip[ir][:, :-1] + self.G_tip[ir][:, 1:]).ravel())
-            mid = 0.5 * (self._ages[:-1] + self._ages[1:])
-            rc = core_radius(mid, self.omega, s.core_radius * rot.chord, s.core_delta,
-                             s.kinematic_viscosity)
-            RC.append(np.tile(rc, rot.nb))
+            if not self._compiled or ir not in self._tip_rc:
+                # the core growth depends on the wake age only: computed once
+                mid = 0.5 * (self._ages[:-1] + self._ages[1:])
+                rc = core_radius(mid, self.omega, s.core_radius * rot.chord, s.core_delta,
+                                 s.kinematic_viscosity)
+                self._tip_rc[ir] = (rc, np.tile(rc, rot.nb))
+            rc, rc_tiled = self._tip_rc[ir]
+            RC.append(rc_tiled)
             if s.far_wake_revolutions > 0:
                 fa, fb, fg, frc = far_wake_segments(self, ir, X[ir], rc[-1])
                 A.append(fa)
@@ -333,40 +356,26 @@ class FreeVortexWake:
         """Bound and near-wake segments of all blades with the map to panel circulation.
 
         Returns (a, b, rc, gmap) with ``gmap`` (S, P): segment strength = gmap @ gamma,
-        gamma stacked over rotors, blades, panels (P = sum Nb Ne).
+        gamma stacked over rotors, blades, panels (P = sum Nb Ne). Per blade: its
+        Ne bound segments (root to tip), then for each panel edge its n_near
+        trailer segments (younger to older). ``gmap`` and the core radii depend
+        on the layout only: built once by the reference, then reused.
         """
-        s = self.settings
-        A, B, RC, rows, cols, vals = [], [], [], [], [], []
-        seg = 0
-        p0 = 0
-        ne = s.n_elements
+        if not self._compiled:
+            return attached_segments_reference(self)
+        if self._att_layout is None:
+            _, _, rc, gmap = attached_segments_reference(self)
+            self._att_layout = (rc, gmap)
+        rc, gmap = self._att_layout
+        A, B = [], []
         for ir, rot in enumerate(self.rotors):
-            psib = self._psi_blades(rot, self.psi)
             nw = self._near_wake_points(ir, self.psi, self.beta[ir])
-            rc = s.near_wake_core * rot.chord
-            for b in range(rot.nb):
-                pb = p0 + b * ne
-                # bound vortex, root to tip, strength d * gamma_j
-                A.append(nw[b, :-1, 0, :])
-                B.append(nw[b, 1:, 0, :])
-                for j in range(ne):
-                    rows.append(seg + j); cols.append(pb + j); vals.append(rot.d)
-                seg += ne
-                # trailer at edge j, younger -> older, strength d (gamma_{j-1} - gamma_j)
-                for j in range(ne + 1):
-                    A.append(nw[b, j, :-1, :])
-                    B.append(nw[b, j, 1:, :])
-                    for m in range(self.n_near):
-                        if j - 1 >= 0:
-                            rows.append(seg + m); cols.append(pb + j - 1); vals.append(rot.d)
-                        if j < ne:
-                            rows.append(seg + m); cols.append(pb + j); vals.append(-rot.d)
-                    seg += self.n_near
-                RC.append(np.full(ne + (ne + 1) * self.n_near, rc))
-            p0 += rot.nb * ne
-        gmap = np.zeros((seg, p0))
-        np.add.at(gmap, (np.array(rows), np.array(cols)), np.array(vals, dtype=float))
-        return np.concatenate(A), np.concatenate(B), np.concatenate(RC), gmap
+            nb = rot.nb
+            A.append(np.concatenate([nw[:, :-1, 0, :], nw[:, :, :-1, :].reshape(nb, -1, 3)],
+                                    axis=1).reshape(-1, 3))
+            B.append(np.concatenate([nw[:, 1:, 0, :], nw[:, :, 1:, :].reshape(nb, -1, 3)],
+                                    axis=1).reshape(-1, 3))
+        return np.concatenate(A), np.concatenate(B), rc, gmap
 
     def _all_sources(self, X=None):
         a1, b1, g1, rc1 = self._tip_sources(X)
@@ -409,7 +418,7 @@ class FreeVortexWake:
         n = np.concatenate(nrm)
         et = np.concatenate(tan)
         a, b, g, rc = self._tip_sources()
-        v_far = segment_velocity(P, a, b, g, rc, s.kernel_precision)
+        v_far = segment_velocity(P, a, b, g, rc, s.kernel_precision, chained=self._compiled)
         aa, bb, rcc, gmap = self._attached_segments()
         infl = segment_influence(P, aa, bb, rcc)               # (P, S, 3)
         infl_n = np.einsum("psk,pk->ps", infl, n) @ gmap        # normal velocity per unit gamma
@@ -466,7 +475,8 @@ class FreeVortexWake:
         """Velocity [m/s] at the first ``n_eval`` markers of every blade (all rotors)."""
         a, b, g, rc = self._all_sources(X)
         tg = np.concatenate([X[ir][:, :n_eval, :].reshape(-1, 3) for ir in range(len(self.rotors))])
-        v = segment_velocity(tg, a, b, g, rc, self.settings.kernel_precision) + self.v_inf
+        v = segment_velocity(tg, a, b, g, rc, self.settings.kernel_precision,
+                             chained=self._compiled) + self.v_inf
         out, p0 = [], 0
         for rot in self.rotors:
             n = rot.nb * n_eval
