@@ -17,8 +17,15 @@ projection is for), the rest of the march on 2 host threads in both, at the
 default resolution and two finer ones (:data:`GPU_RESOLUTIONS`), each with the
 time inside the kernel calls and the bound an instant kernel would give.
 
+The march itself: one default coaxial revolution with the compiled march and with
+the former numpy march (:mod:`aircraft.wake.reference`, same numbers) on 1 and on
+2 threads, their ratio, and the share of the revolution spent in the Biot-Savart
+kernel calls (velocity kernel; bound/near-wake influence kernel) for each; and
+the estimated wake time of the 12-state coaxial data set from the 1-thread
+revolution time (:data:`DATASET_REVS` revolutions on 2 single-thread workers).
+
 Options: ``--gpu-only`` runs only the GPU part (and the 2-thread CPU revolution
-it is compared with).
+it is compared with); ``--march-only`` only the compiled-vs-former march comparison.
 """
 import argparse
 import math
@@ -33,6 +40,11 @@ from aircraft.wake import (FreeVortexWake, WakeSettings, gpu, segment_velocity,
                            segment_velocity_numpy)
 from aircraft.wake import wake as wake_module
 from aircraft.wake.biot_savart import set_kernel_backend
+from aircraft.wake.reference import reference_wake
+
+#: rotor revolutions marched for the 12-state coaxial hover data set (trim, ten
+#: sweeps, doublet, zero-input run; benchmarks/results/coaxial_12state), on 2 workers
+DATASET_REVS = 1803
 
 #: resolutions of the GPU-vs-CPU revolution comparison: (label, WakeSettings fields).
 #: The default is the studies' wake; the finer ones show where the kernel's share
@@ -67,36 +79,47 @@ def pair_rates(m=1500, n=1800, seed=0):
     return rates
 
 
-def revolution_time(threads, kernel_time=False, **settings):
+def revolution_time(threads, kernel_time=False, compiled=True, influence=None, **settings):
     """Wall time [s] of the second coaxial revolution (the first warms up and compiles).
 
     ``settings`` are :class:`WakeSettings` fields (default resolution without).
     With ``kernel_time=True`` also the time spent inside the Biot-Savart calls of
     that revolution [s], measured by timing each call the march makes; else None.
+    ``compiled=False`` marches with the former numpy march (same numbers). A list
+    passed as ``influence`` receives the time [s] spent in the bound/near-wake
+    influence kernel (``segment_influence``) calls of that revolution.
     """
     numba.set_num_threads(threads)
     s = WakeSettings(**settings)
-    w = FreeVortexWake(coaxial_compound(), s)
+    make = FreeVortexWake if compiled else reference_wake
+    w = make(coaxial_compound(), s)
     w.controls.update(theta0_U=0.16, theta0_L=0.17)
     w.march(s.steps_per_rev)                                   # warm up
     spent = []
-    if kernel_time:
-        # the march calls the kernel through its module's own name: time each call there
-        original = wake_module.segment_velocity
+    original = wake_module.segment_velocity
+    original_infl = wake_module.segment_influence
 
+    def timer(func, store):
         def timed(*args, **kwargs):
             t = time.perf_counter()
-            out = original(*args, **kwargs)
-            spent.append(time.perf_counter() - t)
+            out = func(*args, **kwargs)
+            store.append(time.perf_counter() - t)
             return out
-        wake_module.segment_velocity = timed
+        return timed
+    # the march calls the kernels through its module's own names: time each call there
+    if kernel_time:
+        wake_module.segment_velocity = timer(original, spent)
+    if influence is not None:
+        wake_module.segment_influence = timer(original_infl, influence)
     try:
         t0 = time.perf_counter()
         w.march(s.steps_per_rev)
         elapsed = time.perf_counter() - t0
     finally:
-        if kernel_time:
-            wake_module.segment_velocity = original
+        wake_module.segment_velocity = original
+        wake_module.segment_influence = original_infl
+    if influence is not None:
+        influence[:] = [sum(influence)]
     return elapsed, s, w, (sum(spent) if kernel_time else None)
 
 
@@ -160,11 +183,44 @@ def gpu_main():
               f"(bound with an instant kernel {bound:.1f}x)")
 
 
+def march_comparison(repeats=3):
+    """Print the compiled against the former numpy march: revolution time on 1 and
+    2 threads (best of ``repeats``, the two interleaved so that other load on a
+    shared machine hits both alike), ratio, kernels' share; the data-set estimate."""
+    best = {}
+    for _ in range(repeats):
+        for threads in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
+            for compiled in (False, True):
+                infl = []
+                t, s, _, k = revolution_time(threads, kernel_time=True, compiled=compiled,
+                                             influence=infl)
+                key = (threads, compiled)
+                if key not in best or t < best[key][0]:
+                    best[key] = (t, k, infl[0])
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    for threads in sorted({k[0] for k in best}):
+        (t_old, k_old, i_old), (t_new, k_new, i_new) = best[(threads, False)], best[(threads, True)]
+        print(f"coaxial revolution (default resolution), {threads} thread(s): former numpy march "
+              f"{t_old:.3f} s (kernel {100 * k_old / t_old:.0f} %, influence {100 * i_old / t_old:.0f} %), "
+              f"compiled march {t_new:.3f} s (kernel {100 * k_new / t_new:.0f} %, influence "
+              f"{100 * i_new / t_new:.0f} %): {t_old / t_new:.2f}x faster (target >= 3x)")
+    t1_old, t1_new = best[(1, False)][0], best[(1, True)][0]
+    print(f"12-state coaxial data set, wake part ({DATASET_REVS} revs on 2 workers x 1 thread), "
+          f"estimated from the 1-thread revolution: former {DATASET_REVS * t1_old / 2 / 60:.1f} min, "
+          f"compiled {DATASET_REVS * t1_new / 2 / 60:.1f} min")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--gpu-only", action="store_true",
                         help="only the GPU figures (and the 2-thread CPU revolution they are compared with)")
+    parser.add_argument("--march-only", action="store_true",
+                        help="only the compiled-vs-former march comparison (CPU kernel)")
     args = parser.parse_args(argv)
+    if args.march_only:
+        set_kernel_backend("cpu")
+        march_comparison()
+        return
     if args.gpu_only:
         gpu_main()
         return
@@ -175,6 +231,7 @@ def main(argv=None):
     print(f"Biot-Savart pairs/s: compiled double {r['double']:.3e}, compiled single "
           f"{r['single']:.3e}, numpy {r['numpy']:.3e}; ratio to numpy: double "
           f"{r['double'] / r['numpy']:.1f}x, single {r['single'] / r['numpy']:.1f}x (target >= 50x)")
+    march_comparison()
     t_all, s, w, _ = revolution_time(numba.config.NUMBA_NUM_THREADS)
     t_one, _, _, _ = revolution_time(1)
     print(f"coaxial revolution, {math.degrees(s.azimuth_step):g} deg steps, "

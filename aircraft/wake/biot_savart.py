@@ -250,6 +250,99 @@ def _segment_influence_numba(targets, seg_a, seg_b, rc):
     return out
 
 
+@njit(parallel=True, fastmath=False, cache=True)
+def _segment_influence_lanes(px, py, pz, ax, ay, az, bx, by, bz, rc, linked):
+    # _segment_influence_numba's arithmetic, element for element, arranged like
+    # the velocity kernel: a block of _LANES targets in SIMD lanes, the segments
+    # in sequence, the result (3, N, M) with the targets contiguous (the caller
+    # transposes). Where A_j is bit for bit B_{j-1} (``linked[j]``), r1 / |r1| of
+    # this pair is r2 / |r2| of the previous one -- the same operations on the
+    # same numbers -- and is kept instead of recomputed. Same result, bit for bit.
+    m = px.shape[0]            # a multiple of _LANES (the caller pads)
+    n = ax.shape[0]
+    out = np.empty((3, n, m))
+    for ib in prange(m // _LANES):
+        i0 = ib * _LANES
+        # lane state in one array (targets, previous r2 / |r2|): see the chain kernel
+        st = np.zeros((6, _LANES))
+        # this block's results: indices from range() only, so no wrap-around
+        # checks in the pair loop and it vectorises
+        blk = np.empty((3, n, _LANES))
+        for k in range(_LANES):
+            st[0, k] = px[i0 + k]
+            st[1, k] = py[i0 + k]
+            st[2, k] = pz[i0 + k]
+        for j in range(n):
+            axj = ax[j]
+            ayj = ay[j]
+            azj = az[j]
+            bxj = bx[j]
+            byj = by[j]
+            bzj = bz[j]
+            r0x = bxj - axj
+            r0y = byj - ayj
+            r0z = bzj - azj
+            l2 = r0x * r0x + r0y * r0y + r0z * r0z
+            rcl = rc[j] * rc[j] * l2
+            rcl2 = rcl * rcl
+            if linked[j]:
+                for k in range(_LANES):
+                    r1x = st[0, k] - axj
+                    r1y = st[1, k] - ayj
+                    r1z = st[2, k] - azj
+                    r2x = st[0, k] - bxj
+                    r2y = st[1, k] - byj
+                    r2z = st[2, k] - bzj
+                    cx = r1y * r2z - r1z * r2y
+                    cy = r1z * r2x - r1x * r2z
+                    cz = r1x * r2y - r1y * r2x
+                    c2 = cx * cx + cy * cy + cz * cz
+                    n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z) + _TINY
+                    q2x = r2x / n2
+                    q2y = r2y / n2
+                    q2z = r2z / n2
+                    dot = (r0x * (st[3, k] - q2x) + r0y * (st[4, k] - q2y)
+                           + r0z * (st[5, k] - q2z))
+                    st[3, k] = q2x
+                    st[4, k] = q2y
+                    st[5, k] = q2z
+                    f = dot / (_FOUR_PI * (math.sqrt(c2 * c2 + rcl2) + _TINY))
+                    blk[0, j, k] = f * cx
+                    blk[1, j, k] = f * cy
+                    blk[2, j, k] = f * cz
+            else:
+                for k in range(_LANES):
+                    r1x = st[0, k] - axj
+                    r1y = st[1, k] - ayj
+                    r1z = st[2, k] - azj
+                    r2x = st[0, k] - bxj
+                    r2y = st[1, k] - byj
+                    r2z = st[2, k] - bzj
+                    cx = r1y * r2z - r1z * r2y
+                    cy = r1z * r2x - r1x * r2z
+                    cz = r1x * r2y - r1y * r2x
+                    c2 = cx * cx + cy * cy + cz * cz
+                    n1 = math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z) + _TINY
+                    n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z) + _TINY
+                    q2x = r2x / n2
+                    q2y = r2y / n2
+                    q2z = r2z / n2
+                    dot = (r0x * (r1x / n1 - q2x) + r0y * (r1y / n1 - q2y)
+                           + r0z * (r1z / n1 - q2z))
+                    st[3, k] = q2x
+                    st[4, k] = q2y
+                    st[5, k] = q2z
+                    f = dot / (_FOUR_PI * (math.sqrt(c2 * c2 + rcl2) + _TINY))
+                    blk[0, j, k] = f * cx
+                    blk[1, j, k] = f * cy
+                    blk[2, j, k] = f * cz
+        for c in range(3):
+            for j in range(n):
+                for k in range(_LANES):
+                    out[c, j, i0 + k] = blk[c, j, k]
+    return out
+
+
 _PRECISIONS = {"double": np.float64, "single": np.float32}
 
 #: Environment variable choosing the Biot-Savart backend: ``auto`` (default: the
@@ -353,13 +446,13 @@ def segment_velocity(targets, seg_a, seg_b, gamma, rc, precision="double", *, ch
     if pad:   # repeat the last target: finite, discarded below
         targets = np.concatenate([targets, np.repeat(targets[-1:], pad, axis=0)])
 
+    def rows(x):   # (K, 3) -> three contiguous columns in the working dtype
+        return tuple(np.ascontiguousarray(x.T, dtype=dtype))
+
     def col(x):
         return np.ascontiguousarray(x, dtype=dtype)
 
-    args = (col(targets[:, 0]), col(targets[:, 1]), col(targets[:, 2]),
-            col(seg_a[:, 0]), col(seg_a[:, 1]), col(seg_a[:, 2]),
-            col(seg_b[:, 0]), col(seg_b[:, 1]), col(seg_b[:, 2]),
-            col(r0[:, 0]), col(r0[:, 1]), col(r0[:, 2]),
+    args = (*rows(targets), *rows(seg_a), *rows(seg_b), *rows(r0),
             col(gamma / _FOUR_PI), col(rcl * rcl))
     if chained:
         # A_j == B_{j-1} exactly in the working precision (what the kernel sees)
@@ -372,7 +465,7 @@ def segment_velocity(targets, seg_a, seg_b, gamma, rc, precision="double", *, ch
     return out[:m].astype(np.float64)
 
 
-def segment_influence(targets, seg_a, seg_b, rc):
+def segment_influence(targets, seg_a, seg_b, rc, *, chained=True):
     """Velocity per unit circulation of each segment at each target (compiled kernel).
 
     Used for the small bound/near-wake circulation system of the blades.
@@ -385,6 +478,10 @@ def segment_influence(targets, seg_a, seg_b, rc):
         Segment start and end points [m].
     rc : array_like, shape (N,) or scalar
         Vatistas (n = 2) core radius [m].
+    chained : bool
+        Vectorised over targets, reusing r1 / |r1| where a segment starts exactly
+        where the previous one ends (see :func:`segment_velocity`); ``False``: the
+        former loop (reference march). Bit-identical results either way.
 
     Returns
     -------
@@ -392,7 +489,19 @@ def segment_influence(targets, seg_a, seg_b, rc):
         Induced velocity per unit circulation [1/m].
     """
     targets, seg_a, seg_b, _, rc = _check(targets, seg_a, seg_b, None, rc)
-    return _segment_influence_numba(targets, seg_a, seg_b, rc)
+    if not chained:
+        return _segment_influence_numba(targets, seg_a, seg_b, rc)
+    m, n = targets.shape[0], seg_a.shape[0]
+    if m == 0 or n == 0:
+        return np.zeros((m, n, 3))
+    pad = -m % _LANES
+    if pad:   # repeat the last target: finite, discarded below
+        targets = np.concatenate([targets, np.repeat(targets[-1:], pad, axis=0)])
+    linked = np.zeros(n, dtype=np.bool_)
+    linked[1:] = np.all(seg_a[1:] == seg_b[:-1], axis=1)
+    cols = [np.ascontiguousarray(x) for x in (*targets.T, *seg_a.T, *seg_b.T)]
+    out = _segment_influence_lanes(*cols, rc, linked)
+    return np.ascontiguousarray(out[:, :, :m].transpose(2, 1, 0))
 
 
 def core_radius(age, omega, rc0, delta, nu=1.5e-5):

@@ -420,7 +420,7 @@ class FreeVortexWake:
         a, b, g, rc = self._tip_sources()
         v_far = segment_velocity(P, a, b, g, rc, s.kernel_precision, chained=self._compiled)
         aa, bb, rcc, gmap = self._attached_segments()
-        infl = segment_influence(P, aa, bb, rcc)               # (P, S, 3)
+        infl = segment_influence(P, aa, bb, rcc, chained=self._compiled)   # (P, S, 3)
         infl_n = np.einsum("psk,pk->ps", infl, n) @ gmap        # normal velocity per unit gamma
         ut = np.concatenate(ut_ext) - np.einsum("pk,pk->p", v_far, et)
         up = np.concatenate(up_ext) - np.einsum("pk,pk->p", v_far, n)
