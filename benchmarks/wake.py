@@ -40,7 +40,6 @@ from aircraft.wake import (FreeVortexWake, WakeSettings, gpu, segment_velocity,
                            segment_velocity_numpy)
 from aircraft.wake import wake as wake_module
 from aircraft.wake.biot_savart import set_kernel_backend
-from aircraft.wake.reference import reference_wake
 
 #: rotor revolutions marched for the 12-state coaxial hover data set (trim, ten
 #: sweeps, doublet, zero-input run; benchmarks/results/coaxial_12state), on 2 workers
@@ -91,7 +90,7 @@ def revolution_time(threads, kernel_time=False, compiled=True, influence=None, *
     """
     numba.set_num_threads(threads)
     s = WakeSettings(**settings)
-    make = FreeVortexWake if compiled else reference_wake
+    make = FreeVortexWake if compiled else FreeVortexWake._reference_march
     w = make(coaxial_compound(), s)
     w.controls.update(theta0_U=0.16, theta0_L=0.17)
     w.march(s.steps_per_rev)                                   # warm up

@@ -2,7 +2,8 @@
 
 :class:`aircraft.wake.wake.FreeVortexWake` marches with compiled and vectorised
 helpers (:mod:`aircraft.wake.kinematics`, the chained Biot-Savart kernel, cached
-segment maps). With ``wake._compiled = False`` it runs these functions instead,
+segment maps). A wake made by ``FreeVortexWake._reference_march(...)``
+(``_compiled = False``) runs these functions instead,
 unchanged from the march before that rewrite: the benchmark
 (``benchmarks/wake.py``) times both, and the tests hold the two to the same
 numbers (``tests/aircraft/wake/test_wake_compiled.py``).
@@ -11,27 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["reference_wake"]
-
-
-def reference_wake(config, settings=None, flight=None):
-    """A :class:`~aircraft.wake.wake.FreeVortexWake` that marches with the reference helpers.
-
-    Parameters
-    ----------
-    config, settings, flight
-        As for :class:`~aircraft.wake.wake.FreeVortexWake`.
-
-    Returns
-    -------
-    FreeVortexWake
-        With ``_compiled = False`` from its construction on (starting wake included).
-    """
-    from .wake import FreeVortexWake     # the wake module imports this one
-    wake = FreeVortexWake.__new__(FreeVortexWake)
-    wake._compiled = False
-    wake.__init__(config, settings, flight)
-    return wake
+__all__: list[str] = []
 
 
 def near_wake_points_reference(wake, ir, psi, beta):
@@ -63,7 +44,6 @@ def attached_segments_reference(wake):
     p0 = 0
     ne = s.n_elements
     for ir, rot in enumerate(wake.rotors):
-        psib = wake._psi_blades(rot, wake.psi)
         nw = wake._near_wake_points(ir, wake.psi, wake.beta[ir])
         rc = s.near_wake_core * rot.chord
         for b in range(rot.nb):

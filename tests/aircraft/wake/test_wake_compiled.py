@@ -22,8 +22,7 @@ from aircraft.wake import FlightCondition, FreeVortexWake, WakeSettings
 from aircraft.wake.biot_savart import segment_velocity
 from aircraft.wake.far_wake import _helix, _helix_reference
 from aircraft.wake.kinematics import near_wake_points
-from aircraft.wake.reference import (attached_segments_reference, near_wake_points_reference,
-                                     reference_wake)
+from aircraft.wake.reference import attached_segments_reference, near_wake_points_reference
 
 COARSE = dict(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=4)
 ATOL_M = 1e-12     # [m]: see the module docstring
@@ -122,7 +121,7 @@ def test_march_matches_reference_march(flight):
     free = flight is None
     s = WakeSettings(free_flapping=free, near_wake_contraction=free, **COARSE)
     runs = []
-    for w in (FreeVortexWake(cfg, s, flight), reference_wake(cfg, s, flight)):
+    for w in (FreeVortexWake(cfg, s, flight), FreeVortexWake._reference_march(cfg, s, flight)):
         w.controls.update(theta0_U=0.15, theta0_L=0.16, theta1s_U=0.02)
         if not free:
             w.set_flap_inputs({"beta1s_U": 0.01}, {"beta1c_L": 0.02})
