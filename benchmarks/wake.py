@@ -38,6 +38,7 @@ import numpy as np
 from aircraft.configs import coaxial_compound
 from aircraft.wake import (FreeVortexWake, WakeSettings, gpu, segment_velocity,
                            segment_velocity_numpy)
+from aircraft.wake import blades as blades_module
 from aircraft.wake import wake as wake_module
 from aircraft.wake.biot_savart import set_kernel_backend
 
@@ -95,8 +96,11 @@ def revolution_time(threads, kernel_time=False, compiled=True, influence=None, *
     w.controls.update(theta0_U=0.16, theta0_L=0.17)
     w.march(s.steps_per_rev)                                   # warm up
     spent = []
-    original = wake_module.segment_velocity
-    original_infl = wake_module.segment_influence
+    # the march calls the kernels through its modules' own names (the wake for the
+    # marker velocities, the blade solve for its panels): time each call there
+    originals = [(wake_module, "segment_velocity"), (blades_module, "segment_velocity"),
+                 (blades_module, "segment_influence")]
+    saved = [getattr(mod, name) for mod, name in originals]
 
     def timer(func, store):
         def timed(*args, **kwargs):
@@ -105,18 +109,18 @@ def revolution_time(threads, kernel_time=False, compiled=True, influence=None, *
             store.append(time.perf_counter() - t)
             return out
         return timed
-    # the march calls the kernels through its module's own names: time each call there
-    if kernel_time:
-        wake_module.segment_velocity = timer(original, spent)
-    if influence is not None:
-        wake_module.segment_influence = timer(original_infl, influence)
+    for (mod, name), func in zip(originals, saved):
+        if name == "segment_velocity" and kernel_time:
+            setattr(mod, name, timer(func, spent))
+        elif name == "segment_influence" and influence is not None:
+            setattr(mod, name, timer(func, influence))
     try:
         t0 = time.perf_counter()
         w.march(s.steps_per_rev)
         elapsed = time.perf_counter() - t0
     finally:
-        wake_module.segment_velocity = original
-        wake_module.segment_influence = original_infl
+        for (mod, name), func in zip(originals, saved):
+            setattr(mod, name, func)
     if influence is not None:
         influence[:] = [sum(influence)]
     return elapsed, s, w, (sum(spent) if kernel_time else None)

@@ -25,13 +25,17 @@ Viscous core growth (Squire / Bhagwat-Leishman)::
 
 Reproducibility
 ---------------
-Both kernels are compiled without ``fastmath`` and contain no parallel
+All kernels are compiled without ``fastmath`` and contain no parallel
 reduction: ``prange`` runs over blocks of targets and each target's sum over the
 segments is the sequential sum written in the source (SIMD lanes hold different
 targets). LLVM may therefore neither reorder the sum nor fuse multiply-adds, and
 a kernel result is bit-identical for the same inputs whatever the number of
 threads, and on any IEEE-754 CPU with the same numba/LLVM (AVX2 and AVX-512
-alike). The former ``fastmath`` loop vectorised each sum across the segments, so
+alike). The chained variants (the default: tip vortices, far wake and
+near-wake trailers are chains whose segment j starts exactly where segment j - 1
+ends) keep 1 / |P - A_j| from the previous pair instead of recomputing the same
+operations on the same numbers, so they equal the plain loops bit for bit
+(``chained=False``, kept for the reference march and tested against it). The former ``fastmath`` loop vectorised each sum across the segments, so
 its rounding depended on the vector width of the machine.
 
 A whole wake run is bit-identical on one machine (tested in

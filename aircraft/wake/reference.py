@@ -16,7 +16,24 @@ __all__: list[str] = []
 
 
 def near_wake_points_reference(wake, ir, psi, beta):
-    """Rigid near-wake trailer points, shape (Nb, Ne+1, n_near+1, 3), age 0 first."""
+    """Rigid near-wake trailer points of rotor ``ir`` (loop over the ages).
+
+    Parameters
+    ----------
+    wake : FreeVortexWake
+        The wake (rotors, settings, free stream, inflow ``_lam0``).
+    ir : int
+        Rotor index.
+    psi : float
+        Azimuth of the first blade [rad].
+    beta : ndarray, shape (Nb,)
+        Blade flap angles [rad].
+
+    Returns
+    -------
+    ndarray, shape (Nb, Ne + 1, n_near + 1, 3)
+        Trailer points [m], age 0 first.
+    """
     rot = wake.rotors[ir]
     s = wake.settings
     ages = np.arange(wake.n_near + 1) * s.azimuth_step
@@ -35,8 +52,20 @@ def near_wake_points_reference(wake, ir, psi, beta):
 def attached_segments_reference(wake):
     """Bound and near-wake segments of all blades with the map to panel circulation.
 
-    Returns (a, b, rc, gmap) with ``gmap`` (S, P): segment strength = gmap @ gamma,
-    gamma stacked over rotors, blades, panels (P = sum Nb Ne).
+    Parameters
+    ----------
+    wake : FreeVortexWake
+        The wake at its current step.
+
+    Returns
+    -------
+    a, b : ndarray, shape (S, 3)
+        Segment start and end points [m].
+    rc : ndarray, shape (S,)
+        Core radii [m].
+    gmap : ndarray, shape (S, P)
+        Segment strength = gmap @ gamma [-], gamma [m^2/s] stacked over rotors,
+        blades, panels (P = sum Nb Ne).
     """
     s = wake.settings
     A, B, RC, rows, cols, vals = [], [], [], [], [], []
