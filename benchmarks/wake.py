@@ -17,8 +17,15 @@ projection is for), the rest of the march on 2 host threads in both, at the
 default resolution and two finer ones (:data:`GPU_RESOLUTIONS`), each with the
 time inside the kernel calls and the bound an instant kernel would give.
 
+The march itself: one default coaxial revolution with the compiled march and with
+the former numpy march (:mod:`aircraft.wake.reference`, same numbers) on 1 and on
+2 threads, their ratio, and the share of the revolution spent in the Biot-Savart
+kernel calls (velocity kernel; bound/near-wake influence kernel) for each; and
+the estimated wake time of the 12-state coaxial data set from the 1-thread
+revolution time (:data:`DATASET_REVS` revolutions on 2 single-thread workers).
+
 Options: ``--gpu-only`` runs only the GPU part (and the 2-thread CPU revolution
-it is compared with).
+it is compared with); ``--march-only`` only the compiled-vs-former march comparison.
 """
 import argparse
 import math
@@ -31,8 +38,13 @@ import numpy as np
 from aircraft.configs import coaxial_compound
 from aircraft.wake import (FreeVortexWake, WakeSettings, gpu, segment_velocity,
                            segment_velocity_numpy)
+from aircraft.wake import blades as blades_module
 from aircraft.wake import wake as wake_module
 from aircraft.wake.biot_savart import set_kernel_backend
+
+#: rotor revolutions marched for the 12-state coaxial hover data set (trim, ten
+#: sweeps, doublet, zero-input run; benchmarks/results/coaxial_12state), on 2 workers
+DATASET_REVS = 1803
 
 #: resolutions of the GPU-vs-CPU revolution comparison: (label, WakeSettings fields).
 #: The default is the studies' wake; the finer ones show where the kernel's share
@@ -67,36 +79,55 @@ def pair_rates(m=1500, n=1800, seed=0):
     return rates
 
 
-def revolution_time(threads, kernel_time=False, **settings):
+def revolution_time(threads, kernel_time=False, compiled=True, influence=None, cpu=None,
+                    **settings):
     """Wall time [s] of the second coaxial revolution (the first warms up and compiles).
 
     ``settings`` are :class:`WakeSettings` fields (default resolution without).
     With ``kernel_time=True`` also the time spent inside the Biot-Savart calls of
     that revolution [s], measured by timing each call the march makes; else None.
+    ``compiled=False`` marches with the former numpy march (same numbers). A list
+    passed as ``influence`` receives the time [s] spent in the bound/near-wake
+    influence kernel (``segment_influence``) calls of that revolution, and a list
+    passed as ``cpu`` the process CPU time of the revolution [s] (on one thread
+    the figure least disturbed by other load on a shared machine).
     """
     numba.set_num_threads(threads)
     s = WakeSettings(**settings)
-    w = FreeVortexWake(coaxial_compound(), s)
+    make = FreeVortexWake if compiled else FreeVortexWake._reference_march
+    w = make(coaxial_compound(), s)
     w.controls.update(theta0_U=0.16, theta0_L=0.17)
     w.march(s.steps_per_rev)                                   # warm up
     spent = []
-    if kernel_time:
-        # the march calls the kernel through its module's own name: time each call there
-        original = wake_module.segment_velocity
+    # the march calls the kernels through its modules' own names (the wake for the
+    # marker velocities, the blade solve for its panels): time each call there
+    originals = [(wake_module, "segment_velocity"), (blades_module, "segment_velocity"),
+                 (blades_module, "segment_influence")]
+    saved = [getattr(mod, name) for mod, name in originals]
 
+    def timer(func, store):
         def timed(*args, **kwargs):
             t = time.perf_counter()
-            out = original(*args, **kwargs)
-            spent.append(time.perf_counter() - t)
+            out = func(*args, **kwargs)
+            store.append(time.perf_counter() - t)
             return out
-        wake_module.segment_velocity = timed
+        return timed
+    for (mod, name), func in zip(originals, saved):
+        if name == "segment_velocity" and kernel_time:
+            setattr(mod, name, timer(func, spent))
+        elif name == "segment_influence" and influence is not None:
+            setattr(mod, name, timer(func, influence))
     try:
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         w.march(s.steps_per_rev)
         elapsed = time.perf_counter() - t0
+        if cpu is not None:
+            cpu.append(time.process_time() - c0)
     finally:
-        if kernel_time:
-            wake_module.segment_velocity = original
+        for (mod, name), func in zip(originals, saved):
+            setattr(mod, name, func)
+    if influence is not None:
+        influence[:] = [sum(influence)]
     return elapsed, s, w, (sum(spent) if kernel_time else None)
 
 
@@ -160,11 +191,47 @@ def gpu_main():
               f"(bound with an instant kernel {bound:.1f}x)")
 
 
+def march_comparison(repeats=3):
+    """Print the compiled against the former numpy march: revolution time on 1 and
+    2 threads (best of ``repeats``, the two interleaved so that other load on a
+    shared machine hits both alike), ratio, kernels' share; the data-set estimate."""
+    best = {}
+    for _ in range(repeats):
+        for threads in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
+            for compiled in (False, True):
+                infl, cpu = [], []
+                t, s, _, k = revolution_time(threads, kernel_time=True, compiled=compiled,
+                                             influence=infl, cpu=cpu)
+                key = (threads, compiled)
+                if key not in best or t < best[key][0]:
+                    best[key] = (t, k, infl[0], best.get(key, (0, 0, 0, cpu[0]))[3])
+                best[key] = best[key][:3] + (min(best[key][3], cpu[0]),)
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    for threads in sorted({k[0] for k in best}):
+        (t_old, k_old, i_old, c_old), (t_new, k_new, i_new, c_new) = (best[(threads, False)],
+                                                                      best[(threads, True)])
+        print(f"coaxial revolution (default resolution), {threads} thread(s): former numpy march "
+              f"{t_old:.3f} s (kernel {100 * k_old / t_old:.0f} %, influence {100 * i_old / t_old:.0f} %), "
+              f"compiled march {t_new:.3f} s (kernel {100 * k_new / t_new:.0f} %, influence "
+              f"{100 * i_new / t_new:.0f} %): {t_old / t_new:.2f}x faster (target >= 3x)"
+              + (f"; CPU time {c_old:.3f} s -> {c_new:.3f} s: {c_old / c_new:.2f}x" if threads == 1 else ""))
+    t1_old, t1_new = best[(1, False)][0], best[(1, True)][0]
+    print(f"12-state coaxial data set, wake part ({DATASET_REVS} revs on 2 workers x 1 thread), "
+          f"estimated from the 1-thread revolution: former {DATASET_REVS * t1_old / 2 / 60:.1f} min, "
+          f"compiled {DATASET_REVS * t1_new / 2 / 60:.1f} min")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--gpu-only", action="store_true",
                         help="only the GPU figures (and the 2-thread CPU revolution they are compared with)")
+    parser.add_argument("--march-only", action="store_true",
+                        help="only the compiled-vs-former march comparison (CPU kernel)")
     args = parser.parse_args(argv)
+    if args.march_only:
+        set_kernel_backend("cpu")
+        march_comparison()
+        return
     if args.gpu_only:
         gpu_main()
         return
@@ -175,6 +242,7 @@ def main(argv=None):
     print(f"Biot-Savart pairs/s: compiled double {r['double']:.3e}, compiled single "
           f"{r['single']:.3e}, numpy {r['numpy']:.3e}; ratio to numpy: double "
           f"{r['double'] / r['numpy']:.1f}x, single {r['single'] / r['numpy']:.1f}x (target >= 50x)")
+    march_comparison()
     t_all, s, w, _ = revolution_time(numba.config.NUMBA_NUM_THREADS)
     t_one, _, _, _ = revolution_time(1)
     print(f"coaxial revolution, {math.degrees(s.azimuth_step):g} deg steps, "

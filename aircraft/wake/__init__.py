@@ -5,15 +5,22 @@ Architecture
 ::
 
     settings.py     WakeSettings, FlightCondition (dataclasses, SI / rad)
-    biot_savart.py  segment_velocity (numba, parallel over targets), its numpy
-                    reference, segment_influence, Vatistas n=2 core + core growth;
-                    array-in / array-out so a GPU kernel can slot in behind it
-    wake.py         FreeVortexWake: lifting-line blades (linear lift, stall limit,
-                    Kutta-Joukowski), rigid ~30 deg near wake, one free tip vortex per
+    biot_savart.py  segment_velocity (numba, parallel over targets; chained
+                    segments reuse 1/|P - A|), segment_influence, Vatistas n=2 core
+                    + core growth; array-in / array-out so a GPU kernel can slot in
+    segments_common.py  input checks and the numpy reference of the kernel, shared
+                    by the CPU and GPU kernels (no import circle between them)
+    wake.py         FreeVortexWake: rigid ~30 deg near wake, one free tip vortex per
                     blade marched with a PC2B-type predictor-corrector, frozen
-                    far-wake buffer and a prescribed helical far-wake continuation,
-                    rigid or free (spring-hinge) flapping
-    far_wake.py     prescribed helical far-wake continuation (sources only)
+                    far-wake buffer and a far-wake continuation
+    blades.py       lifting-line blade solve (linear lift, stall limit,
+                    Kutta-Joukowski) and the flap step (rigid or spring-hinge)
+    kinematics.py   compiled near-wake geometry of the blades (numba)
+    initial_wake.py prescribed starting tip vortices (Landgrebe hover / skewed helix)
+    reference.py    the former numpy near-wake helpers: the reference march
+                    (FreeVortexWake._reference_march, same numbers; benchmark baseline)
+    errors.py       WakeDivergedError (leaf: wake raises, trim catches)
+    far_wake.py     convected / prescribed helical far-wake continuation (sources only)
     threads.py      single-threaded BLAS while numba kernels run
     outputs.py      blade-sum loads and inflow harmonics (Eqs. 2.22, 2.25, 2.26)
     trim.py         trim_wake (thrust / coaxial torque balance, zero hub moments),

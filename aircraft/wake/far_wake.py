@@ -78,6 +78,43 @@ def _helix(wake, ir, X, n_points, start):
     z0 = X[:, -1, 2].mean()
     psib = wake._psi_blades(rot, wake.psi)
     g_far = wake.G_tip[ir][:, -nrev:].mean(axis=1)             # strength of the last turn
+    if not getattr(wake, "_compiled", True):
+        return _helix_reference(wake, ir, X, n_points, start)
+    # all blades at once; element by element the same operations as the loop of
+    # _helix_reference, so the same numbers
+    ang = psib[:, None] - zeta[None, :]
+    pts = np.empty((rot.nb, n_points, 3))
+    pts[..., 0] = rot.hub[0] - radius * np.cos(ang) + drift[0] * t_abs
+    pts[..., 1] = rot.hub[1] - rot.d * radius * np.sin(ang) + drift[1] * t_abs
+    pts[..., 2] = z0 + drift[2] * t_rel
+    return pts, g_far
+
+
+def _helix_reference(wake, ir, X, n_points, start):
+    """:func:`_helix` as a loop over the blades (the reference march, ``wake._compiled``
+    False); the same numbers."""
+    s = wake.settings
+    rot = wake.rotors[ir]
+    nrev = s.steps_per_rev
+    nf = s.n_free
+    drift = wake.v_inf - np.array([0.0, 0.0, wake._lam0[ir] * wake.omega * rot.R])
+    # helix axis: through the hub, carried downstream by the in-plane free stream
+    # over the wake age (in forward flight the wake's end lies ~mu zeta R behind
+    # the hub; an axis fixed at the hub put the whole far wake under the disk)
+    k0 = max(nf + 1 - nrev, 1)
+    last = X[:, k0:nf + 1, :]                                  # last free revolution
+    t_last = wake._ages[k0:nf + 1] / wake.omega
+    radius = np.hypot(last[..., 0] - rot.hub[0] - drift[0] * t_last,
+                      last[..., 1] - rot.hub[1] - drift[1] * t_last).mean()
+    radius = float(np.clip(radius, 0.6 * rot.R, 1.0 * rot.R))
+    step = (far_wake_release_steps(s) * s.azimuth_step if s.far_wake_convected
+            else s.far_wake_step)
+    zeta = wake._ages[-1] + (start + np.arange(n_points)) * step   # wake age [rad]
+    t_rel = (zeta - wake._ages[-1]) / wake.omega
+    t_abs = zeta / wake.omega
+    z0 = X[:, -1, 2].mean()
+    psib = wake._psi_blades(rot, wake.psi)
+    g_far = wake.G_tip[ir][:, -nrev:].mean(axis=1)             # strength of the last turn
     pts = np.empty((rot.nb, n_points, 3))
     for b in range(rot.nb):
         ang = psib[b] - zeta

@@ -58,6 +58,8 @@ import warnings
 
 import numpy as np
 
+from .segments_common import _check, segment_velocity_numpy
+
 try:   # never fail to import: without numba.cuda the backend is simply unavailable
     from numba import cuda
     from numba.core.errors import NumbaPerformanceWarning
@@ -179,7 +181,6 @@ def _self_check(where):
     """(usable, reason) after compiling and running the kernel once on ``where``."""
     # a device without a working toolkit (NVVM, libdevice) must fall back here,
     # not in the middle of a march
-    from .biot_savart import segment_velocity_numpy
     rng = np.random.default_rng(0)
     tg = rng.normal(size=(5, 3))
     a = rng.normal(size=(7, 3))
@@ -353,7 +354,6 @@ def segment_velocity(targets, seg_a, seg_b, gamma, rc, precision="double"):
     RuntimeError
         If there is neither a usable CUDA device nor numba's CUDA simulator.
     """
-    from .biot_savart import _check
     if precision not in _PRECISIONS:
         raise ValueError(f"precision must be 'double' or 'single', got {precision!r}")
     targets, seg_a, seg_b, gamma, rc = _check(targets, seg_a, seg_b, gamma, rc)

@@ -12,7 +12,7 @@ import pandas as pd
 from .._validation import integer as _integer, real as _real
 from ..inflow.base import rotor_suffix
 from .threads import single_threaded_blas
-from .wake import WakeDivergedError
+from .errors import WakeDivergedError
 
 __all__ = ["WakeTrim", "WakeTrimError", "WakeInputError", "trim_wake", "run_wake"]
 

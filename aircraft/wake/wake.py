@@ -26,14 +26,17 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
 from ..configs import AircraftConfig
 from ..inflow.base import rotor_suffix
-from .biot_savart import segment_velocity, segment_influence, core_radius
-from .outputs import blade_sum_loads, blade_sum_inflow, flap_rate_mbc, flap_mbc
+from .biot_savart import segment_velocity, core_radius
 from .far_wake import far_wake_segments, initial_far_wake, convect_far_wake
+from .errors import WakeDivergedError
 from .settings import WakeSettings, FlightCondition, WakeSettingsError
+from .blades import advance_blades, solve_blades
+from .initial_wake import initial_tip_vortices
+from .kinematics import near_wake_points
+from .reference import near_wake_points_reference, attached_segments_reference
 from .threads import single_threaded_blas
 
 __all__ = ["FreeVortexWake", "WakeDivergedError"]
@@ -41,10 +44,6 @@ __all__ = ["FreeVortexWake", "WakeDivergedError"]
 _CONTROL_KEYS = ("theta0", "theta1s", "theta1c")
 #: prescribed tip-path-plane (multiblade flap) inputs, rigid-flap mode only
 _FLAP_KEYS = ("beta1s", "beta1c")
-
-
-class WakeDivergedError(RuntimeError):
-    """Raised when the wake geometry or the loads become non-finite."""
 
 
 @dataclass
@@ -88,6 +87,23 @@ class FreeVortexWake:
     hover, a momentum-inflow skewed helix in forward flight) and is marched in time.
     Use :meth:`trim` to reach a periodic, trimmed wake, then :meth:`run`.
     """
+
+    #: March with the compiled/vectorised helpers (True) or the former numpy
+    #: reference (False, :mod:`aircraft.wake.reference`; same numbers, slower).
+    #: :meth:`_reference_march` sets it before ``__init__``, so that the starting
+    #: wake is built the same way too.
+    _compiled = True
+
+    @classmethod
+    def _reference_march(cls, config, settings=None, flight=None):
+        """A wake that marches with the former numpy helpers (benchmark baseline, tests).
+
+        Same arguments as the class; the numbers equal those of the compiled march.
+        """
+        wake = cls.__new__(cls)
+        wake._compiled = False
+        wake.__init__(config, settings, flight)
+        return wake
 
     def __init__(self, config: AircraftConfig, settings: WakeSettings | None = None,
                  flight: FlightCondition | None = None):
@@ -208,19 +224,30 @@ class FreeVortexWake:
         return psi + 2.0 * np.pi * np.arange(rot.nb) / rot.nb
 
     def _near_wake_points(self, ir, psi, beta):
-        """Rigid near-wake trailer points, shape (Nb, Ne+1, n_near+1, 3), age 0 first."""
+        """Rigid near-wake trailer points, shape (Nb, Ne+1, n_near+1, 3), age 0 first.
+
+        The march asks for the same near wake several times per step (the first
+        markers, the corrector's velocities, the blade solve); the last result per
+        rotor is kept with the state it depends on and returned while that state
+        is unchanged (do not modify the returned array).
+        """
+        if not self._compiled:
+            return near_wake_points_reference(self, ir, psi, beta)
         rot = self.rotors[ir]
+        ct = self._last[rot.name]["CT"] if self._last is not None else self._ct0[ir]
+        key = (float(psi), beta.tobytes(), float(self._lam0[ir]), float(ct))
+        hit = self._nw_cache.get(ir)
+        if hit is not None and hit[0] == key:
+            return hit[1]
         s = self.settings
         ages = np.arange(self.n_near + 1) * s.azimuth_step
-        pts = np.empty((rot.nb, rot.r_edge.size, ages.size, 3))
         # the near wake drifts with the free stream and half the rotor's mean
         # induced velocity (the tip vortex's initial descent is about that)
         drift = self.v_inf - np.array([0.0, 0.0, 0.5 * self._lam0[ir] * self.omega * rot.R])
-        contraction = self._near_wake_contraction(ir, ages)
-        for m, age in enumerate(ages):
-            p = self._blade_points(rot, self._psi_blades(rot, psi) - age, beta, rot.r_edge)
-            p[..., :2] = rot.hub[:2] + contraction[m] * (p[..., :2] - rot.hub[:2])
-            pts[:, :, m, :] = p + drift * age / self.omega
+        pts = near_wake_points(rot.hub, rot.R, rot.e, rot.d, rot.r_edge,
+                               self._psi_blades(rot, psi), beta, ages,
+                               self._near_wake_contraction(ir, ages), drift, self.omega)
+        self._nw_cache[ir] = (key, pts)
         return pts
 
     def _near_wake_contraction(self, ir, ages):
@@ -256,34 +283,7 @@ class FreeVortexWake:
         mu = np.hypot(self.v_inf[0], self.v_inf[1]) / (self.omega * self.rotors[0].R)
         for ir, rot in enumerate(self.rotors):
             ct = cts[ir]
-            sigma = rot.nb * rot.chord / (math.pi * rot.R)
-            psib = self._psi_blades(rot, self.psi)
-            X = np.empty((rot.nb, nk, 3))
-            if mu < 0.05:
-                # Landgrebe prescribed hover wake (Leishman, Principles, Sec. 10.7)
-                tw = math.degrees(rot.twist)
-                k1 = -0.25 * (ct / sigma + 0.001 * tw)
-                k2 = -(1.41 + 0.0141 * tw) * math.sqrt(ct / 2.0)
-                lam = 0.145 + 27.0 * ct
-                rad = 0.78 + 0.22 * np.exp(-lam * ages)
-                zb = 2 * np.pi / rot.nb
-                zz = np.where(ages <= zb, k1 * ages, k1 * zb + k2 * (ages - zb))
-                for b in range(rot.nb):
-                    ang = psib[b] - ages
-                    X[b, :, 0] = -rad * np.cos(ang)
-                    X[b, :, 1] = -rot.d * rad * np.sin(ang)
-                    X[b, :, 2] = zz
-                X = rot.hub + rot.R * X + self.v_inf * (ages / self.omega)[None, :, None]
-            else:
-                # skewed undistorted helix with the momentum (Glauert) inflow
-                vi = self._lam0[ir] * self.omega * rot.R
-                drift = self.v_inf - np.array([0.0, 0.0, vi])
-                for b in range(rot.nb):
-                    ang = psib[b] - ages
-                    X[b, :, 0] = -rot.R * np.cos(ang)
-                    X[b, :, 1] = -rot.d * rot.R * np.sin(ang)
-                    X[b, :, 2] = 0.0
-                X = rot.hub + X + drift * (ages / self.omega)[None, :, None]
+            X = initial_tip_vortices(self, ir, ct, ages, mu)
             self.X.append(X)
             self.Xold.append(X.copy())
             self.Vold.append(np.zeros((rot.nb, s.n_free + 1, 3)))
@@ -304,6 +304,9 @@ class FreeVortexWake:
                 self.far_released.append(0)
         self._first_step = True
         self._last = None
+        self._nw_cache = {}        # rotor -> (state key, near-wake points)
+        self._att_layout = None    # (core radii, gmap) of the attached segments
+        self._tip_rc = {}          # rotor -> core radii of its tip-vortex segments
         self._vbuf_mean = None
         self._solve_blades()
 
@@ -317,10 +320,14 @@ class FreeVortexWake:
             A.append(X[ir][:, :-1, :].reshape(-1, 3))
             B.append(X[ir][:, 1:, :].reshape(-1, 3))
             G.append(rot.d * 0.5 * (self.G_tip[ir][:, :-1] + self.G_tip[ir][:, 1:]).ravel())
-            mid = 0.5 * (self._ages[:-1] + self._ages[1:])
-            rc = core_radius(mid, self.omega, s.core_radius * rot.chord, s.core_delta,
-                             s.kinematic_viscosity)
-            RC.append(np.tile(rc, rot.nb))
+            if not self._compiled or ir not in self._tip_rc:
+                # the core growth depends on the wake age only: computed once
+                mid = 0.5 * (self._ages[:-1] + self._ages[1:])
+                rc = core_radius(mid, self.omega, s.core_radius * rot.chord, s.core_delta,
+                                 s.kinematic_viscosity)
+                self._tip_rc[ir] = (rc, np.tile(rc, rot.nb))
+            rc, rc_tiled = self._tip_rc[ir]
+            RC.append(rc_tiled)
             if s.far_wake_revolutions > 0:
                 fa, fb, fg, frc = far_wake_segments(self, ir, X[ir], rc[-1])
                 A.append(fa)
@@ -333,40 +340,26 @@ class FreeVortexWake:
         """Bound and near-wake segments of all blades with the map to panel circulation.
 
         Returns (a, b, rc, gmap) with ``gmap`` (S, P): segment strength = gmap @ gamma,
-        gamma stacked over rotors, blades, panels (P = sum Nb Ne).
+        gamma stacked over rotors, blades, panels (P = sum Nb Ne). Per blade: its
+        Ne bound segments (root to tip), then for each panel edge its n_near
+        trailer segments (younger to older). ``gmap`` and the core radii depend
+        on the layout only: built once by the reference, then reused.
         """
-        s = self.settings
-        A, B, RC, rows, cols, vals = [], [], [], [], [], []
-        seg = 0
-        p0 = 0
-        ne = s.n_elements
+        if not self._compiled:
+            return attached_segments_reference(self)
+        if self._att_layout is None:
+            _, _, rc, gmap = attached_segments_reference(self)
+            self._att_layout = (rc, gmap)
+        rc, gmap = self._att_layout
+        A, B = [], []
         for ir, rot in enumerate(self.rotors):
-            psib = self._psi_blades(rot, self.psi)
             nw = self._near_wake_points(ir, self.psi, self.beta[ir])
-            rc = s.near_wake_core * rot.chord
-            for b in range(rot.nb):
-                pb = p0 + b * ne
-                # bound vortex, root to tip, strength d * gamma_j
-                A.append(nw[b, :-1, 0, :])
-                B.append(nw[b, 1:, 0, :])
-                for j in range(ne):
-                    rows.append(seg + j); cols.append(pb + j); vals.append(rot.d)
-                seg += ne
-                # trailer at edge j, younger -> older, strength d (gamma_{j-1} - gamma_j)
-                for j in range(ne + 1):
-                    A.append(nw[b, j, :-1, :])
-                    B.append(nw[b, j, 1:, :])
-                    for m in range(self.n_near):
-                        if j - 1 >= 0:
-                            rows.append(seg + m); cols.append(pb + j - 1); vals.append(rot.d)
-                        if j < ne:
-                            rows.append(seg + m); cols.append(pb + j); vals.append(-rot.d)
-                    seg += self.n_near
-                RC.append(np.full(ne + (ne + 1) * self.n_near, rc))
-            p0 += rot.nb * ne
-        gmap = np.zeros((seg, p0))
-        np.add.at(gmap, (np.array(rows), np.array(cols)), np.array(vals, dtype=float))
-        return np.concatenate(A), np.concatenate(B), np.concatenate(RC), gmap
+            nb = rot.nb
+            A.append(np.concatenate([nw[:, :-1, 0, :], nw[:, :, :-1, :].reshape(nb, -1, 3)],
+                                    axis=1).reshape(-1, 3))
+            B.append(np.concatenate([nw[:, 1:, 0, :], nw[:, :, 1:, :].reshape(nb, -1, 3)],
+                                    axis=1).reshape(-1, 3))
+        return np.concatenate(A), np.concatenate(B), rc, gmap
 
     def _all_sources(self, X=None):
         a1, b1, g1, rc1 = self._tip_sources(X)
@@ -383,90 +376,17 @@ class FreeVortexWake:
                 + c[f"theta1c{suf}"] * np.cos(psib))
 
     def _solve_blades(self):
-        """Bound circulation, loads and inflow of every blade at the current step."""
-        s = self.settings
-        ne = s.n_elements
-        cols, nrm, tan, ut_ext, up_ext, kcoef, theta, psis = [], [], [], [], [], [], [], []
-        for ir, rot in enumerate(self.rotors):
-            psib = self._psi_blades(rot, self.psi)
-            er, et, span, normal = self._blade_frames(rot, psib, self.beta[ir])
-            pts = self._blade_points(rot, psib, self.beta[ir], rot.r)
-            rad_h = rot.R * rot.e + rot.R * (rot.r[None, :] - rot.e) * np.cos(self.beta[ir])[:, None]
-            vblade = (self.omega * rad_h[:, :, None] * et[:, None, :]
-                      + (self.beta_dot[ir][:, None] * rot.R * (rot.r[None, :] - rot.e))[:, :, None]
-                      * normal[:, None, :])
-            cols.append(pts.reshape(-1, 3))
-            nrm.append(np.repeat(normal, ne, axis=0))
-            tan.append(np.repeat(et, ne, axis=0))
-            vrel = self.v_inf[None, None, :] - vblade
-            ut_ext.append(-(vrel * et[:, None, :]).sum(-1).ravel())
-            up_ext.append(-(vrel * normal[:, None, :]).sum(-1).ravel())
-            kcoef.append(np.full(rot.nb * ne, 0.5 * rot.chord * rot.a))
-            th = self._controls_at(rot, psib)[:, None] + rot.twist * (rot.r[None, :] - 0.75)
-            theta.append(th.ravel())
-            psis.append(psib)
-        P = np.concatenate(cols)
-        n = np.concatenate(nrm)
-        et = np.concatenate(tan)
-        a, b, g, rc = self._tip_sources()
-        v_far = segment_velocity(P, a, b, g, rc, s.kernel_precision)
-        aa, bb, rcc, gmap = self._attached_segments()
-        infl = segment_influence(P, aa, bb, rcc)               # (P, S, 3)
-        infl_n = np.einsum("psk,pk->ps", infl, n) @ gmap        # normal velocity per unit gamma
-        ut = np.concatenate(ut_ext) - np.einsum("pk,pk->p", v_far, et)
-        up = np.concatenate(up_ext) - np.einsum("pk,pk->p", v_far, n)
-        k = np.concatenate(kcoef)
-        th = np.concatenate(theta)
-        ut_min = 0.05 * self.omega * self.rotors[0].R
-        active = ut > ut_min          # reverse flow and near-reverse: no lift
-        rhs = np.where(active, k * (th * ut - up), 0.0)
-        mat = np.eye(P.shape[0]) - np.where(active[:, None], k[:, None] * infl_n, 0.0)
-        gam = np.linalg.solve(mat, rhs)
-        up_tot = up - infl_n @ gam
-        alpha = th - up_tot / np.where(active, ut, 1.0)
-        alpha_c = np.clip(alpha, -self.rotors[0].stall, self.rotors[0].stall)
-        gam = np.where(active, k * alpha_c * ut, 0.0)
-        if not np.all(np.isfinite(gam)):
-            raise WakeDivergedError(f"non-finite bound circulation at t = {self.t:.3f} s")
-        v_att = np.einsum("psk,s->pk", infl, gmap @ gam)
-        v_ind = v_far + v_att
-        out = {}
-        p0 = 0
-        for ir, rot in enumerate(self.rotors):
-            sl = slice(p0, p0 + rot.nb * ne)
-            p0 += rot.nb * ne
-            G = gam[sl].reshape(rot.nb, ne)
-            self.gamma[ir] = G
-            UT = ut[sl].reshape(rot.nb, ne)
-            UP = up_tot[sl].reshape(rot.nb, ne)
-            dL = self.rho * G * UT * rot.dr[None, :] * rot.R          # along n
-            drag = (self.rho * G * UP + 0.5 * self.rho * (UT ** 2 + UP ** 2) * rot.chord * rot.cd0
-                    * active[sl].reshape(rot.nb, ne)) * rot.dr[None, :] * rot.R
-            cb = np.cos(self.beta[ir])[:, None]
-            dT = dL * cb
-            ct, cl, cm, cq = blade_sum_loads(dT, drag, rot.r, psis[ir], rot.scale)
-            lam = -v_ind[sl, 2].reshape(rot.nb, ne) / (self.omega * rot.R)
-            l0, l1s, l1c = blade_sum_inflow(lam, rot.r, rot.dr, psis[ir])
-            self._lam0[ir] = max(l0, 0.0)
-            b1s_dot, b1c_dot = flap_rate_mbc(self.beta[ir], self.beta_dot[ir], psis[ir], self.omega)
-            b0, b1s, b1c = flap_mbc(self.beta[ir], psis[ir])
-            # flap moment about the (equivalent) hinge
-            mflap = (dL * rot.R * (rot.r[None, :] - rot.e)).sum(axis=1)
-            out[rot.name] = dict(CT=ct, CL=cl, CM=cm, CQ=cq, lam0=l0, lam1s=l1s, lam1c=l1c,
-                                 beta1s_dot=b1s_dot, beta1c_dot=b1c_dot, beta0=b0,
-                                 beta1s=b1s, beta1c=b1c, mflap=mflap,
-                                 gamma_max=G.max(axis=1),
-                                 gamma_eq=(G * (rot.r * rot.dr)[None, :]).sum(axis=1)
-                                 / (rot.r * rot.dr).sum())
-        self._last = out
-        return out
+        """Bound circulation, loads and inflow of every blade at the current step
+        (see :func:`aircraft.wake.blades.solve_blades`)."""
+        return solve_blades(self)
 
     # ------------------------------------------------------------- marching
     def _free_velocity(self, X, n_eval):
         """Velocity [m/s] at the first ``n_eval`` markers of every blade (all rotors)."""
         a, b, g, rc = self._all_sources(X)
         tg = np.concatenate([X[ir][:, :n_eval, :].reshape(-1, 3) for ir in range(len(self.rotors))])
-        v = segment_velocity(tg, a, b, g, rc, self.settings.kernel_precision) + self.v_inf
+        v = segment_velocity(tg, a, b, g, rc, self.settings.kernel_precision,
+                             chained=self._compiled) + self.v_inf
         out, p0 = [], 0
         for rot in self.rotors:
             n = rot.nb * n_eval
@@ -499,27 +419,8 @@ class FreeVortexWake:
         return self.v_inf + np.array([0.0, 0.0, min(v_ax, 0.0)])
 
     def _advance_blades(self):
-        """Advance azimuth and flapping by one step (symplectic Euler for free flap)."""
-        s = self.settings
-        self.t += self.dt
-        self.psi += s.azimuth_step
-        for ir, rot in enumerate(self.rotors):
-            psib = self._psi_blades(rot, self.psi)
-            if s.free_flapping:
-                m = self._last[rot.name]["mflap"]
-                acc = -self.omega ** 2 * rot.nu2 * self.beta[ir] + m / rot.inertia
-                self.beta_dot[ir] = self.beta_dot[ir] + self.dt * acc
-                self.beta[ir] = self.beta[ir] + self.dt * self.beta_dot[ir]
-            else:
-                suf = rotor_suffix(rot.name)
-                b0, b1c, b1s = self.beta_trim[rot.name]
-                b1c = b1c + self.flap_inputs[f"beta1c{suf}"]
-                b1s = b1s + self.flap_inputs[f"beta1s{suf}"]
-                db1c = self.flap_input_rates[f"beta1c{suf}"]
-                db1s = self.flap_input_rates[f"beta1s{suf}"]
-                self.beta[ir] = b0 + b1c * np.cos(psib) + b1s * np.sin(psib)
-                self.beta_dot[ir] = (db1c * np.cos(psib) + db1s * np.sin(psib)
-                                     + self.omega * (-b1c * np.sin(psib) + b1s * np.cos(psib)))
+        """Advance azimuth and flapping by one step (:func:`aircraft.wake.blades.advance_blades`)."""
+        advance_blades(self)
 
     def _new_first_markers(self):
         """Position of the k = 0 marker (end of each blade's tip trailer)."""
