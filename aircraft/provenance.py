@@ -240,6 +240,17 @@ def jsonable(x):
     """``x`` as plain JSON data: arrays and numpy scalars to lists and numbers, tables to
     lists of records, non-finite floats to None.
 
+    Parameters
+    ----------
+    x : object
+        Nested dicts, lists and tuples of numbers, strings, numpy arrays and scalars and
+        pandas DataFrames.
+
+    Returns
+    -------
+    object
+        The same structure in JSON types (dict keys as strings).
+
     Examples
     --------
     >>> import numpy as np

@@ -12,15 +12,18 @@ module that defines ``X``.
 Checked against the page:
 
 * the unit-level edges, each marked ``(lazy)`` when every import behind it is lazy;
-* the module-level import circles (lazy imports included);
-
-and, independent of the page: no circle at import time, neither among modules nor
-among units, and ``controllers`` imports no ``aircraft`` module at import time.
+and, independent of the page: no import circle among modules (lazy imports
+included) nor among units, no arrow up the layers, ``controllers`` imports no
+``aircraft`` module at all, every package face is small (about 30 names), every
+library module has its ``__all__``, and the tests and benchmarks import no study
+script.
 """
 import ast
 import re
 import sys
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = ROOT / "docs" / "architecture.rst"
@@ -161,12 +164,71 @@ def test_page_states_the_unit_import_graph():
         + "\n".join("   " + line for line in expected))
 
 
-def test_page_lists_the_module_circles():
+def test_no_module_circle_even_through_lazy_imports():
     graph, mods = module_graph()
-    expected = sorted(" <-> ".join(c) for c in module_circles(graph, mods))
-    assert sorted(_page_block("module-circles")) == expected, (
-        "docs/architecture.rst's module circles differ from the code; the block should read:\n"
-        + "\n".join("   " + line for line in expected))
+    found = [" <-> ".join(c) for c in module_circles(graph, mods)]
+    assert found == [], "import circles among modules:\n" + "\n".join(found)
+
+
+#: The layers, lowest first: a unit imports only units of a lower layer (or its own).
+LAYERS = {"flightid": 0, "aircraft._validation": 1, "aircraft.provenance": 1, "aircraft.configs": 2,
+          "aircraft.inflow": 3, "aircraft.wake": 4, "aircraft.helicopter": 4, "controllers": 4,
+          "aircraft.identification": 5, "aircraft": 6, "studies": 7}
+
+
+def test_no_arrow_runs_up_the_layers():
+    graph, _ = module_graph()
+    assert set(LAYERS) == set(UNITS)
+    upward = sorted(f"{a} -> {b}" for (a, b) in unit_edges(graph) if LAYERS[b] >= LAYERS[a])
+    assert upward == [], "imports against the layers (lazy ones included):\n" + "\n".join(upward)
+
+
+def test_controllers_need_no_aircraft_at_all():
+    graph, _ = module_graph()
+    found = sorted(b for (a, b) in unit_edges(graph) if a == "controllers" and b.startswith("aircraft"))
+    assert found == []
+
+
+@pytest.mark.parametrize("package", ["flightid", "aircraft", "aircraft.configs", "aircraft.wake", "aircraft.inflow",
+                                     "aircraft.helicopter", "aircraft.identification",
+                                     "aircraft.identification.structures", "aircraft.identification.off_rotor",
+                                     "controllers", "controllers.hq"])
+def test_package_faces_are_small(package):
+    # a face is what `from package import *` and the docs show: a user's first names, not all of them
+    path = ROOT / package.replace(".", "/") / "__init__.py"
+    names = None
+    for node in ast.parse(path.read_text()).body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "__all__" for t in node.targets):
+            names = ast.literal_eval(node.value)
+    assert names is not None, f"{package} has no __all__"
+    assert len(names) <= 32, f"{package} exports {len(names)} names"
+
+
+def test_every_module_says_what_it_exports():
+    missing = []
+    for name, path in _modules().items():
+        if name.startswith("studies") and not name.startswith("studies.analysis."):
+            continue                       # study scripts are programs, not libraries
+        tree = ast.parse(path.read_text())
+        if path.name != "__init__.py" and not any(
+                isinstance(n, ast.Assign) and any(getattr(t, "id", None) == "__all__" for t in n.targets)
+                for n in tree.body):
+            missing.append(name)
+    assert missing == [], f"modules without __all__: {missing}"
+
+
+def test_tests_and_benchmarks_never_import_a_study_script():
+    # studies.analysis is research code with its own tests; studies.cli's registry names the studies
+    allowed = ("studies.analysis", "studies.cli")
+    found = []
+    for folder in ("tests", "benchmarks"):
+        for path in (ROOT / folder).rglob("*.py"):
+            for node in ast.walk(ast.parse(path.read_text())):
+                names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                         [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else [])
+                found += [f"{path.relative_to(ROOT)}: {n}" for n in names
+                          if (n == "studies" or n.startswith("studies.")) and not n.startswith(allowed)]
+    assert found == []
 
 
 def test_no_circle_at_import_time():
@@ -177,12 +239,6 @@ def test_no_circle_at_import_time():
         if not lazy:
             eager.setdefault(a, set()).add(b)
     assert circles(eager) == []
-
-
-def test_controllers_need_no_aircraft_at_import_time():
-    graph, _ = module_graph()
-    eager = [(a, b) for (a, b), lazy in unit_edges(graph).items() if a == "controllers" and not lazy]
-    assert not [b for _, b in eager if b.startswith("aircraft")], eager
 
 
 def test_the_checker_finds_circles_and_units():

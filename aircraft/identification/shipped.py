@@ -39,9 +39,9 @@ class Recipe:
     settings: IdentificationSettings = field(default_factory=IdentificationSettings)
 
     def arguments(self):
-        from aircraft import configs
+        import aircraft.configs
         from aircraft.wake import FlightCondition
-        return getattr(configs, self.config)(), FlightCondition(), self.structure
+        return getattr(aircraft.configs, self.config)(), FlightCondition(), self.structure
 
     def hash(self):
         config, condition, structure = self.arguments()
