@@ -10,6 +10,7 @@
             └─ specs (Table 7.3) ─► evaluate_specs ─► hq_window
     hq: spec library (every axis, ADS-33E-PRF boundaries as data, provenance per spec):
         specs_for(axis, mte=..., uce=..., attention=..., speed=...), spec_table()
+    smooth: each spec's own NLP constraint (the DMO's NLP is assembled from the spec list)
     dmo(design or [designs]): CasADi/IPOPT, boundaries raised by bisection to a
                  tolerance, several starts per step, every result re-checked with
                  python-control; search_designs: independent dense search

@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Ellipse, Patch, Polygon, Rectangle
 
 from .metrics import frequency_response_of
+from .smooth import NicholsEllipse
 
 __all__ = ["hq_window"]
 
@@ -198,7 +199,10 @@ def hq_window(designs, specs, labels=None, fig=None, ncols=4, nichols=True):
             _scalar_panel(ax, spec, results, labels, colors)
         _title(ax, spec)
     if nichols:
-        _nichols_panel(axes[len(specs)], designs, labels, colors)
+        # the exclusion ellipse drawn is the one the spec list grades (default: 45 deg, 6 dB)
+        ellipse = next((s.smooth for s in specs if isinstance(getattr(s, "smooth", None), NicholsEllipse)),
+                       NicholsEllipse())
+        _nichols_panel(axes[len(specs)], designs, labels, colors, ellipse.gain_axis, ellipse.phase_axis)
     handles = [Patch(color=_COLORS[k], label=f"Level {k}") for k in (1, 2, 3)]
     handles += [axes[0].plot([], [], _MARKERS[k % 7], color=colors[k], mec="k", mew=0.5,
                              label=labels[k])[0] for k in range(len(designs))]

@@ -13,6 +13,8 @@ from __future__ import annotations
 import control
 import numpy as np
 
+from .lti import coupling_numerator, residualize
+
 __all__ = ["hover_roll_plant", "first_order_actuator", "second_order_actuator", "DelayedLTI",
            "roll_design_plant", "HOVER_ROLL_CONSTRAINTS"]
 
@@ -24,7 +26,7 @@ def _check_siso(sys, what):
     if isinstance(sys, control.LTI) and (sys.ninputs != 1 or sys.noutputs != 1):
         raise ValueError(f"{what} must be SISO, got {sys.ninputs} inputs x {sys.noutputs} outputs; "
                          "take one channel first (e.g. controllers.roll_design_plant or "
-                         "aircraft.helicopter.coupling_numerator)")
+                         "controllers.lti.coupling_numerator)")
 
 
 class DelayedLTI:
@@ -152,8 +154,6 @@ def roll_design_plant(sys, output="p", input="delta_lat", constrained=None, drop
     DelayedLTI
         ``output/input`` plant [rad/s per stick unit].
     """
-    from aircraft.helicopter import coupling_numerator, residualize   # aircraft is optional here
-
     if not isinstance(sys, control.StateSpace):
         raise TypeError(f"sys must be a control.StateSpace, got {type(sys).__name__}")
     constrained = dict(HOVER_ROLL_CONSTRAINTS if constrained is None else constrained)

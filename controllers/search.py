@@ -20,6 +20,9 @@ import pandas as pd
 from tqdm.auto import tqdm
 
 from .emf import PIDGains
+from .nlp import _gain_scale
+from .scoring import _as_designs, design_margins
+from .smooth import CrossoverMinimum, spec_with_constraint
 from .specs import default_specs
 
 __all__ = ["SearchResult", "search_designs"]
@@ -95,7 +98,6 @@ def search_designs(design, specs=None, n_scale=15, scale_span=(0.2, 5.0), integr
     SearchResult
         ``design`` is None when no point is feasible.
     """
-    from .dmo import _as_designs, _gain_scale, design_margins
     designs = _as_designs(design)
     specs = default_specs() if specs is None else specs
     if n_scale < 2 or n_ratio < 2:
@@ -110,6 +112,7 @@ def search_designs(design, specs=None, n_scale=15, scale_span=(0.2, 5.0), integr
             raise ValueError(f"{name} must be (low, high) with 0 < low < high, got {span!r}")
     if not np.isfinite(reference_frequency) or reference_frequency <= 0:
         raise ValueError(f"reference_frequency must be > 0 rad/s, got {reference_frequency!r}")
+    crossover_name = spec_with_constraint(specs, CrossoverMinimum).name   # the spec that reads the crossover
     t0 = time.perf_counter()
     w_ref = reference_frequency
     k0 = _gain_scale(designs, w_ref)
@@ -125,7 +128,7 @@ def search_designs(design, specs=None, n_scale=15, scale_span=(0.2, 5.0), integr
         cands = [d.with_gains(gains) for d in designs]
         table, unmet, margin, limiting = design_margins(cands, specs, stop_at_first_unmet=True)
         ok = not unmet
-        wc = float(table.loc[table.spec == "CrsMnG2", "value"].min()) if ok else np.nan
+        wc = float(table.loc[table.spec == crossover_name, "value"].min()) if ok else np.nan
         rows.append({"K_phi": gains.K_phi, "K_Iphi": gains.K_Iphi, "K_p": gains.K_p, "feasible": ok,
                      "crossover": wc, "first_unmet": unmet[0] if unmet else ""})
         bar.update(1)

@@ -2,7 +2,10 @@
 
 A spec maps an :class:`~controllers.emf.EMFDesign` to a value, a level (1/2/3)
 and a normalised margin (>= 0: Level 1 met; -1: on the Level 2/3 boundary).
-A spec set is a plain list: users add their own :class:`Spec`.
+A spec set is a plain list: users add their own :class:`Spec`.  A spec that
+can steer the design-margin optimiser carries its smooth NLP form in ``smooth``
+(:mod:`controllers.smooth`), built from the spec's own boundary: the DMO's NLP
+is assembled from the list, so adding such a spec is all it takes.
 
 Boundary sources (numbers the dissertation does not print are taken from the
 literature and marked as approximations where the source is a chart):
@@ -28,12 +31,14 @@ literature and marked as approximations where the source is a chart):
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Callable
+from typing import Callable, Optional
 
 import numpy as np
 import pandas as pd
 
 from . import metrics as m
+from .smooth import (CrossoverMinimum, DisturbanceBandwidthFloor, DisturbancePeakLimit, GainMarginPastCritical,
+                     NicholsEllipse, PhaseMarginBand, SmoothConstraint)
 
 __all__ = ["Spec", "BandwidthSpec", "SpecEvaluationError", "default_specs", "evaluate_specs",
            "spec_by_name", "UNSTABLE_NOTE"]
@@ -51,7 +56,10 @@ class Spec:
     """A scalar spec: ``direction='min'`` means value >= boundary is good.
 
     ``kind`` is ``"hard"`` (must be met: stability), ``"soft"`` (Level 1
-    wanted) or ``"objective"`` (minimised, no boundary).
+    wanted) or ``"objective"`` (minimised, no boundary).  ``smooth`` is the
+    spec's smooth form for the DMO's NLP (:mod:`controllers.smooth`), built
+    from this spec's own boundary; None when the spec is honoured only by
+    scoring candidates on the true metric.
     """
 
     name: str
@@ -65,8 +73,12 @@ class Spec:
     source: str = ""
     #: frequency-domain specs read "not applicable" (never met) on an unstable loop
     needs_stable: bool = True
+    #: smooth NLP constraint of this spec's Level 1 boundary (None: true metric only)
+    smooth: Optional[SmoothConstraint] = None
 
     def __post_init__(self):
+        if self.smooth is not None and not isinstance(self.smooth, SmoothConstraint):
+            raise TypeError(f"spec {self.name!r}: smooth must be a SmoothConstraint, got {type(self.smooth).__name__}")
         if self.direction not in ("min", "max"):
             raise ValueError(f"spec {self.name!r}: direction must be 'min' or 'max', got {self.direction!r}")
         if self.kind not in ("hard", "soft", "objective"):
@@ -154,6 +166,7 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
     """
     from .hq.limits import BANDWIDTH_LIMITS, canonical_mte   # one definition; unknown MTE names raise
 
+    nichols = NicholsEllipse(phase_axis=45.0, gain_axis=6.0)     # one definition: metric and NLP
     gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
     pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]
     mte = canonical_mte(mte)
@@ -162,21 +175,23 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
         Spec("EigLcG1", "all eigenvalues in the left half plane", _max_real_pole, "max", 0.0, 0.0,
              kind="hard", units="1/s", source="generic", needs_stable=False),
         Spec("NicMgG1", "Nichols margin, loop broken at mixer input",
-             lambda d: m.nichols_margin(d.broken_loop()), "min", 0.0, -0.25, kind="hard",
-             source="CONDUIT NicMgG1 (elliptical approximation)"),
+             lambda d: m.nichols_margin(d.broken_loop(), phase_axis=nichols.phase_axis,
+                                        gain_axis=nichols.gain_axis), "min", 0.0, -0.25, kind="hard",
+             source="CONDUIT NicMgG1 (elliptical approximation)", smooth=nichols),
         Spec("StbMgG1.GM", "gain margin, loop broken at mixer input", gm, "min", 6.0, 4.5,
-             kind="hard", units="dB", source="MIL-DTL-9490E"),
+             kind="hard", units="dB", source="MIL-DTL-9490E", smooth=GainMarginPastCritical()),
         Spec("StbMgG1.PM", "phase margin, loop broken at mixer input", pm, "min", 45.0, 35.0,
-             kind="hard", units="deg", source="MIL-DTL-9490E"),
+             kind="hard", units="deg", source="MIL-DTL-9490E", smooth=PhaseMarginBand()),
         BandwidthSpec("BnwAtH1", f"roll attitude bandwidth ({mte} MTEs)", None, "min", bw1, bw2,
                       kind="soft", units="rad/s", source="ADS-33E-PRF Fig. 3.3-1 (approx.)",
                       tau1=tau1, tau2=tau2),
         Spec("DrbRoH1", "roll attitude disturbance rejection bandwidth",
              lambda d: m.disturbance_rejection_bandwidth(d.disturbance_response()), "min", drb_min,
-             min(0.5, 0.55 * drb_min), kind="soft", units="rad/s", source="ADS-33E-PRF §3.2.9; Table 7.3"),
+             min(0.5, 0.55 * drb_min), kind="soft", units="rad/s", source="ADS-33E-PRF §3.2.9; Table 7.3",
+             smooth=DisturbanceBandwidthFloor()),
         Spec("DrpAvH1", "disturbance rejection peak",
              lambda d: m.disturbance_rejection_peak(d.disturbance_response()), "max", 5.0, 7.0,
-             kind="soft", units="dB", source="Table 7.3; Tischler et al. 2017"),
+             kind="soft", units="dB", source="Table 7.3; Tischler et al. 2017", smooth=DisturbancePeakLimit()),
         Spec("EigDpG1.hi", "damping ratio, 4-20 rad/s",
              lambda d: m.damping_in_band(d.closed_loop_poles(), 4.0, 20.0), "min", 0.1, 0.02,
              kind="soft", source="Table 7.3", needs_stable=False),
@@ -187,7 +202,8 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
              lambda d: _olop_margin(d, olop_stick, olop_rate), "min", 0.0, -6.0, kind="soft",
              units="dB", source="Duda 1997 OLOP criterion (approximate boundary)"),
         Spec("CrsMnG2", "minimum crossover frequency", lambda d: m.crossover_frequency(d.broken_loop()),
-             "min", crossover_min, 0.8 * crossover_min, kind="soft", units="rad/s", source="generic"),
+             "min", crossover_min, 0.8 * crossover_min, kind="soft", units="rad/s", source="generic",
+             smooth=CrossoverMinimum()),
         Spec("CrsLnG1", "crossover frequency (minimised)", lambda d: m.crossover_frequency(d.broken_loop()),
              "max", kind="objective", units="rad/s", source="generic"),
         Spec("RmsAcG1.pilot", "mixer-input RMS, pilot input",

@@ -38,7 +38,7 @@ KNOWN_GAPS = {
     "controllers.specs.spec_by_name": "no docstring yet",
     **{name: _PARAMS_SECTION_MISSING for name in (
         "aircraft.helicopter.airframe.fuselage_loads", "aircraft.helicopter.airframe.propeller_loads",
-        "aircraft.helicopter.coupling.residualize", "aircraft.helicopter.linearize.default_steps",
+        "aircraft.helicopter.linearize.default_steps",
         "aircraft.helicopter.linearize.modes",
         "aircraft.inflow.base.flap_rate_names",
         "aircraft.inflow.base.inflow_names", "aircraft.inflow.base.load_names",
