@@ -365,6 +365,12 @@ def coaxial_compound(cruise: bool = False) -> AircraftConfig:
     cruise : bool
         If True use the forward-flight rotor speed (20.3 rad/s) instead of the
         hover rotor speed (23.7 rad/s).
+
+    Examples
+    --------
+    >>> cfg = coaxial_compound()
+    >>> len(cfg.rotors), cfg.rotors[0].name, cfg.propeller is not None
+    (2, 'U', True)
     """
     radius = 30.55 * FT
     omega = 20.3 if cruise else 23.7

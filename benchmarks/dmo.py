@@ -21,8 +21,8 @@ from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, trim
 from aircraft.helicopter.hold import hold_states
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
-from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default_specs, dmo, hover_roll_plant,
-                         roll_design_plant, search_designs, second_order_actuator)
+from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default_specs, dmo, hover_roll_plant, roll_design_plant, search_designs)
+from controllers.plants import second_order_actuator
 
 
 def _aircraft(inflow, config=None):

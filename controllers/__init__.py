@@ -16,33 +16,18 @@
                  python-control; search_designs: independent dense search
     roll_design_plant(linearize(trim(heli))): the Eq. 7.21 roll plant
 """
-from .plants import (HOVER_ROLL_CONSTRAINTS, DelayedLTI, first_order_actuator, hover_roll_plant,
-                     roll_design_plant, second_order_actuator)
-from .metrics import (attitude_bandwidth, crossover_frequency, damping_in_band,
-                      disturbance_rejection_bandwidth, disturbance_rejection_peak,
-                      gain_phase_margins, nichols_margin, rms_response, NonFiniteResponseError)
-from .emf import (CommandModel, EMFDesign, FrequencyFunction, PIDGains, fit_equivalent_delay,
-                  fit_inverse_plant)
-from .specs import (BandwidthSpec, Spec, SpecEvaluationError, default_specs, evaluate_specs,
-                    spec_by_name)
-from .dmo import (DMOResult, DMOSettings, InfeasibleDesignError, OptimizationResult, SolverError,
-                  VerificationError, design_margins, dmo, optimize)
-from .search import SearchResult, search_designs
-from .hqwindow import hq_window
-from .hq import BoundaryNotPublishedError, HQSpec, spec_table, specs_for
 
-__all__ = [
-    "HOVER_ROLL_CONSTRAINTS", "DelayedLTI", "first_order_actuator", "hover_roll_plant",
-    "roll_design_plant", "second_order_actuator",
-    "attitude_bandwidth", "crossover_frequency", "damping_in_band",
-    "disturbance_rejection_bandwidth", "disturbance_rejection_peak", "gain_phase_margins",
-    "nichols_margin", "rms_response", "NonFiniteResponseError",
-    "CommandModel", "EMFDesign", "FrequencyFunction", "PIDGains", "fit_equivalent_delay",
-    "fit_inverse_plant",
-    "BandwidthSpec", "Spec", "SpecEvaluationError", "default_specs", "evaluate_specs", "spec_by_name",
-    "DMOResult", "DMOSettings", "InfeasibleDesignError", "OptimizationResult", "SolverError",
-    "VerificationError", "design_margins", "dmo", "optimize",
-    "SearchResult", "search_designs",
-    "hq_window",
-    "specs_for", "spec_table", "HQSpec", "BoundaryNotPublishedError",
-]
+from .plants import roll_design_plant, hover_roll_plant, DelayedLTI, first_order_actuator, second_order_actuator
+from .metrics import crossover_frequency, gain_phase_margins, attitude_bandwidth
+from .emf import EMFDesign, CommandModel, PIDGains
+from .specs import Spec, BandwidthSpec, default_specs, evaluate_specs, SpecEvaluationError
+from .dmo import dmo, DMOSettings, DMOResult, InfeasibleDesignError, design_margins, optimize
+from .search import search_designs
+from .hqwindow import hq_window
+from .hq import specs_for, spec_table, HQSpec, BoundaryNotPublishedError
+
+__all__ = ["roll_design_plant", "hover_roll_plant", "DelayedLTI", "first_order_actuator", "second_order_actuator",
+           "crossover_frequency", "gain_phase_margins", "attitude_bandwidth", "EMFDesign", "CommandModel",
+           "PIDGains", "Spec", "BandwidthSpec", "default_specs", "evaluate_specs", "SpecEvaluationError",
+           "dmo", "DMOSettings", "DMOResult", "InfeasibleDesignError", "design_margins", "optimize",
+           "search_designs", "hq_window", "specs_for", "spec_table", "HQSpec", "BoundaryNotPublishedError"]

@@ -471,6 +471,20 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
         No response has a coherent point (e.g. coherence zero everywhere).
     UnstableModelError
         Every start ended unstable and ``require_stable`` is set.
+
+    Examples
+    --------
+    >>> import numpy as np, control
+    >>> from flightid import frequency_sweep, frequency_response
+    >>> t, u = frequency_sweep(0.5, 20.0, 60.0, 0.01, seed=0)
+    >>> y = control.forced_response(control.tf([4.0], [1.0, 2.0]), t, u).outputs     # 4 / (s + 2)
+    >>> data = frequency_response(t, u, y, w_min=0.5, w_max=20.0, output_names=["y"])
+    >>> from flightid import FGCStructure, fit
+    >>> structure = FGCStructure([["f"]], [["g"]], [[1.0]], inputs=["u"], outputs=["y"],
+    ...                          initial={"f": -1.0, "g": 1.0})             # x' = f x + g u, y = x
+    >>> result = fit(structure, data)
+    >>> {k: round(v, 1) for k, v in result.structure.values.items()}, bool(result.J_ave < 1)
+    ({'f': -2.0, 'g': 4.0}, True)
     """
     free = structure.free_names
     if not free:

@@ -120,6 +120,20 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
     Returns
     -------
     ReductionResult
+
+    Examples
+    --------
+    >>> import numpy as np, control
+    >>> from flightid import frequency_sweep, frequency_response
+    >>> t, u = frequency_sweep(0.5, 20.0, 60.0, 0.01, seed=0)
+    >>> y = control.forced_response(control.tf([4.0], [1.0, 2.0]), t, u).outputs     # 4 / (s + 2)
+    >>> data = frequency_response(t, u, y, w_min=0.5, w_max=20.0, output_names=["y"])
+    >>> from flightid import FGCStructure, reduce
+    >>> structure = FGCStructure([["f"]], [["g"]], [[1.0]], tau=[["tau"]], inputs=["u"], outputs=["y"],
+    ...                          initial={"f": -1.0, "g": 1.0, "tau": 0.05})
+    >>> reduction = reduce(structure, data)        # the data hold no delay: tau goes
+    >>> reduction.removed
+    ['tau']
     """
     if isinstance(batch, bool) or not isinstance(batch, (int, np.integer)) or batch < 1:
         raise IdentificationError(f"batch must be an integer >= 1, got {batch!r}")

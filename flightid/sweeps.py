@@ -74,6 +74,12 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
         Time [s], ``trim_start + duration + trim_end`` long.
     u : ndarray
         The input.
+
+    Examples
+    --------
+    >>> t, u = frequency_sweep(0.5, 20.0, 60.0, 0.01, seed=0)
+    >>> round(float(t[-1]), 2), round(float(np.abs(u).max()), 2)    # 3 s trims around 60 s
+    (66.0, 1.0)
     """
     w_min, w_max, duration, dt = _check_positive(w_min=w_min, w_max=w_max, duration=duration, dt=dt)
     amplitude = real_scalar("amplitude", amplitude)

@@ -97,6 +97,20 @@ def verify(model, t, inputs, outputs, *, input_names=None, output_names=None,
     Returns
     -------
     VerificationResult
+
+    Examples
+    --------
+    >>> import numpy as np, control
+    >>> from flightid import frequency_sweep, frequency_response
+    >>> t, u = frequency_sweep(0.5, 20.0, 60.0, 0.01, seed=0)
+    >>> y = control.forced_response(control.tf([4.0], [1.0, 2.0]), t, u).outputs     # 4 / (s + 2)
+    >>> data = frequency_response(t, u, y, w_min=0.5, w_max=20.0, output_names=["y"])
+    >>> from flightid import FGCStructure, fit, verify
+    >>> structure = FGCStructure([["f"]], [["g"]], [[1.0]], inputs=["u"], outputs=["y"],
+    ...                          initial={"f": -1.0, "g": 1.0})
+    >>> check = verify(fit(structure, data).structure, t, u[None], y[None])
+    >>> bool(check.metrics.TIC.iloc[0] < 0.05)          # Theil inequality: 0 is a perfect match
+    True
     """
     if isinstance(model, ModelStructure):
         model = model.to_statespace()

@@ -76,8 +76,8 @@ from aircraft.helicopter.tilt_coupling import helicopter_for
 from aircraft.identification.structures.tilt import tilt_inflow_from_record
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
-from controllers import (CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo,
-                         evaluate_specs, hq_window, roll_design_plant, second_order_actuator)
+from controllers import (CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo, evaluate_specs, hq_window, roll_design_plant)
+from controllers.plants import second_order_actuator
 from controllers.metrics import damping_in_band, gain_phase_margins
 
 # reference values of Tables 7.4 / 7.5 (comparison columns only, never outputs)

@@ -17,7 +17,8 @@ from matplotlib.figure import Figure
 from scipy.optimize import brentq
 
 import controllers
-from controllers import EMFDesign, PIDGains, default_specs, evaluate_specs, hover_roll_plant, second_order_actuator
+from controllers import EMFDesign, PIDGains, default_specs, evaluate_specs, hover_roll_plant
+from controllers.plants import second_order_actuator
 from controllers import metrics as m
 from controllers.hq import BoundaryNotPublishedError, LevelRegions, all_specs, spec_table, specs_for
 from controllers.hq.bandwidth import BANDWIDTH_LIMITS, bandwidth_chart, bandwidth_specs, rectangle_regions

@@ -107,6 +107,18 @@ def linearize(trim_result, inputs="pilot", step_scale=1.0, control_step=1e-5, *,
         model was re-trimmed at another condition since, or the state was edited).
     LinearizeInputError
         Bad arguments.
+
+    Examples
+    --------
+    >>> from aircraft import coaxial_compound
+    >>> from aircraft.helicopter import Helicopter, TrimCondition, linearize, trim
+    >>> from aircraft.inflow import DynamicClimb
+    >>> hover = trim(Helicopter(coaxial_compound(), DynamicClimb()), TrimCondition(speed=0.0))
+    >>> sys = linearize(hover)                    # a control.StateSpace with named signals
+    >>> sys.input_labels
+    ['delta_col', 'delta_lon', 'delta_lat', 'delta_ped', 'delta_prop']
+    >>> sys.output_labels[:9]
+    ['u', 'v', 'w', 'p', 'q', 'r', 'phi', 'theta', 'psi']
     """
     from .trim import TrimResult
     if not isinstance(trim_result, TrimResult):

@@ -107,7 +107,7 @@ def cyclic_rotation(control_phase):
     Examples
     --------
     >>> import numpy as np
-    >>> np.round(cyclic_rotation(np.pi / 2) @ [0.0, -1.0], 12)   # -theta1c -> -theta1s
+    >>> np.round(cyclic_rotation(np.pi / 2) @ [0.0, -1.0], 12) + 0.0   # -theta1c -> -theta1s
     array([-1.,  0.])
     """
     g = _real(MixingError, "control_phase", control_phase, lo=-math.pi, hi=math.pi, unit="rad")

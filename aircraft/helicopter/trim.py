@@ -150,6 +150,15 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
         before solving).
     TrimInputError
         A bad argument.
+
+    Examples
+    --------
+    >>> from aircraft import coaxial_compound
+    >>> from aircraft.helicopter import Helicopter, TrimCondition, linearize, trim
+    >>> from aircraft.inflow import DynamicClimb
+    >>> hover = trim(Helicopter(coaxial_compound(), DynamicClimb()), TrimCondition(speed=0.0))
+    >>> bool(hover.max_residual < 1e-8), round(hover.loads["CT_U"] / hover.loads["CT_L"], 2)
+    (True, 1.14)
     """
     if not isinstance(heli, Helicopter):
         raise TrimInputError(f"heli must be a Helicopter, got {type(heli).__name__}")

@@ -52,8 +52,9 @@ def flight_condition(config=None, mu=None, alpha=0.0, *, speed=None):
     Examples
     --------
     >>> from aircraft import uh60_single_rotor
+    >>> rotor = uh60_single_rotor().rotors[0]
     >>> fc = flight_condition(uh60_single_rotor(), 0.1)
-    >>> round(fc.speed / (0.1 * 27.0 * 8.18), 6)
+    >>> round(fc.speed / (0.1 * rotor.omega * rotor.radius), 12)
     1.0
     >>> flight_condition(speed=102.9, alpha=0.035).speed
     102.9

@@ -465,6 +465,18 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     ------
     PipelineError
         If the wake trim fails or the excitation cannot separate the inputs.
+
+    Examples
+    --------
+    The single-rotor hover 3-state of the UH-60-like rotor (about 5 min on 2 cores the
+    first time; the wake runs are cached):
+
+    >>> from aircraft import uh60_single_rotor
+    >>> from aircraft.identification import identify_inflow
+    >>> model = identify_inflow(uh60_single_rotor(), ct=0.0061)    # doctest: +SKIP
+    >>> print(model.summary())                                       # doctest: +SKIP
+    >>> model.trust.to_pandas()                                      # doctest: +SKIP
+    >>> inflow = model.to_inflow()          # into the aircraft: Helicopter(config, inflow)  # doctest: +SKIP
     """
     from tqdm.auto import tqdm
     from aircraft.wake import FlightCondition, SweepSpec, run_sweeps

@@ -177,6 +177,18 @@ class IdentifiedInflow(InflowModel):
         Total inflow harmonics at that trim (what the blade sees, interference
         included); :meth:`inflow` returns ``inflow_ref + C x``.
     name : str
+
+    Examples
+    --------
+    Pitt-Peters' linearised hover model in our rotor frame as an identified model
+    (``M`` per d/dpsi; momentum theory ``C_T = 2 lam^2`` gives ``Lbar11 = 4 lam``):
+
+    >>> import numpy as np
+    >>> lam = np.sqrt(0.0061 / 2)
+    >>> M = np.diag([8 / (3 * np.pi), -16 / (45 * np.pi), -16 / (45 * np.pi)])
+    >>> inflow = IdentifiedInflow.from_matrices(M, np.diag([4 * lam, -lam, -lam]), omega=27.0, rotors=("",))
+    >>> inflow.system.input_labels, inflow.system.output_labels
+    (['CT', 'CL', 'CM'], ['lam0', 'lam1s', 'lam1c'])
     """
 
     def __init__(self, system, rotors=None, loads_ref=None, inflow_ref=None, name="identified"):

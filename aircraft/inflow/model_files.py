@@ -132,7 +132,7 @@ class ModelRecord:
         try:
             trim = d["trim"]
             return cls(name=d["name"], form=d["form"], rotors=tuple(d["rotors"]), omega=float(d["omega_rad_s"]),
-                       matrices={k: np.array(v, float) for k, v in d["matrices"].items()},
+                       matrices={k: _finite_matrix(source, k, v) for k, v in d["matrices"].items()},
                        inputs=list(d["inputs"]), outputs=list(d["outputs"]),
                        loads_ref=np.array(trim["loads_ref"], float), inflow_ref=np.array(trim["inflow_ref"], float),
                        frame=d.get("frame", "rotor"), time=d.get("time", "azimuth"),
@@ -143,6 +143,22 @@ class ModelRecord:
                        description=d.get("description", ""))
         except KeyError as err:
             raise ModelFileError(f"{source}: missing field {err}") from err
+
+
+def _finite_matrix(source, key, value):
+    """Matrix ``key`` of a model file as floats; a missing (null), non-numeric or infinite
+    entry is refused with its position (the file is damaged or was written from a failed fit)."""
+    try:
+        m = np.array([[np.nan if x is None else x for x in row] if isinstance(row, list) else
+                      (np.nan if row is None else row) for row in value], float)
+    except (TypeError, ValueError) as err:
+        raise ModelFileError(f"{source}: matrix {key!r} holds a non-numeric entry ({err})") from err
+    bad = np.argwhere(~np.isfinite(m))
+    if len(bad):
+        where = tuple(int(i) for i in bad[0])
+        raise ModelFileError(f"{source}: matrix {key!r} entry {where} is not finite ({m[where]!r}); "
+                             f"{len(bad)} such entr{'y' if len(bad) == 1 else 'ies'}")
+    return m
 
 
 def _models_dir():

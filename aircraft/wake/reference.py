@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+__all__ = ["near_wake_points_reference", "attached_segments_reference"]
+
 __all__: list[str] = []
 
 

@@ -473,6 +473,20 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     CacheStoreWarning
         The disk is full: a computed run (or the trim) could not be cached; it is
         returned all the same.
+
+    Examples
+    --------
+    Two sweeps and a doublet of the UH-60-like rotor in hover, trimmed to C_T = 0.0061
+    (a few minutes on 2 cores; cached under ``.cache/wake``):
+
+    >>> from aircraft import uh60_single_rotor
+    >>> from aircraft.wake import FlightCondition, SweepSpec, WakeSettings, run_sweeps
+    >>> specs = [SweepSpec("theta0", kind="sweep", amplitude=0.02, duration=45.0, w_min=0.7, w_max=30.0),
+    ...          SweepSpec("theta1s", kind="sweep", amplitude=0.02, duration=45.0, w_min=0.7, w_max=30.0, seed=1),
+    ...          SweepSpec("theta0", kind="doublet", amplitude=0.05, duration=4.0, pulse_width=0.5)]
+    >>> runs = run_sweeps(uh60_single_rotor(), WakeSettings(), FlightCondition(), specs,
+    ...                   trim={"ct": 0.0061})                        # doctest: +SKIP
+    >>> runs[specs[0].name][["CT", "lam0"]].describe()              # doctest: +SKIP
     """
     from tqdm.auto import tqdm
     from ..configs import AircraftConfig

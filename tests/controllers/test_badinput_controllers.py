@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 import control
 
-from controllers import (CommandModel, DelayedLTI, DMOSettings, EMFDesign, InfeasibleDesignError, PIDGains,
-                         SpecEvaluationError, default_specs, dmo, evaluate_specs, hover_roll_plant,
-                         roll_design_plant, second_order_actuator, spec_by_name)
+from controllers import (CommandModel, DelayedLTI, DMOSettings, EMFDesign, InfeasibleDesignError, PIDGains, SpecEvaluationError, default_specs, dmo, evaluate_specs, hover_roll_plant, roll_design_plant)
+from controllers.plants import second_order_actuator
+from controllers.specs import spec_by_name
 from controllers.specs import UNSTABLE_NOTE
 
 
@@ -127,7 +127,7 @@ def test_zero_sensor_delay_builds_every_loop():
 
 def test_negative_equivalent_delay_is_reported_not_clipped_silently():
     import warnings as _w
-    from controllers import FrequencyFunction, fit_equivalent_delay
+    from controllers.emf import FrequencyFunction, fit_equivalent_delay
     from controllers.emf import NegativeDelayWarning
     lead = FrequencyFunction(lambda s: np.exp(0.02 * s))      # a 20 ms phase lead
     with pytest.warns(NegativeDelayWarning, match="-20"):
@@ -148,7 +148,7 @@ def test_search_refuses_bad_spans(kwargs, match):
 
 @pytest.mark.parametrize("band", [(0.0, 12.0), (12.0, 1.0), (np.inf, 1.0), "1-12"])
 def test_fit_ranges_that_cannot_be_log_spaced_are_refused(band):
-    from controllers import FrequencyFunction, fit_equivalent_delay, fit_inverse_plant
+    from controllers.emf import FrequencyFunction, fit_equivalent_delay, fit_inverse_plant
     h = FrequencyFunction(lambda s: 2.0 / (s + 1.0))
     with pytest.raises(ValueError, match="omega_range"):
         fit_inverse_plant(h, band)

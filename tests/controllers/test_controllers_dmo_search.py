@@ -27,9 +27,8 @@ from aircraft.helicopter.hold import hold_states
 from aircraft.helicopter.mixing import mixing_matrix, pilot_inputs
 from aircraft.inflow import DynamicClimb, IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, in_rotor_frames
-from controllers import (CommandModel, DMOSettings, DelayedLTI, EMFDesign, InfeasibleDesignError, PIDGains,
-                         default_specs, dmo, evaluate_specs, hover_roll_plant, roll_design_plant, search_designs,
-                         second_order_actuator)
+from controllers import (CommandModel, DMOSettings, DelayedLTI, EMFDesign, InfeasibleDesignError, PIDGains, default_specs, dmo, evaluate_specs, hover_roll_plant, roll_design_plant, search_designs)
+from controllers.plants import second_order_actuator
 
 START = (1.5, 0.9)           # DMO starting boundaries = the search's boundaries [rad/s]
 

@@ -2,9 +2,9 @@ import numpy as np
 import pytest
 import control
 
-from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default_specs, dmo,
-                         evaluate_specs, fit_equivalent_delay, fit_inverse_plant, hover_roll_plant,
-                         hq_window, optimize, second_order_actuator)
+from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default_specs, dmo, evaluate_specs, hover_roll_plant, hq_window, optimize)
+from controllers.emf import fit_equivalent_delay, fit_inverse_plant
+from controllers.plants import second_order_actuator
 from controllers.emf import FrequencyFunction
 from controllers.plants import DelayedLTI
 

@@ -3,9 +3,8 @@ import pytest
 import control
 from scipy.optimize import brentq
 
-from controllers import (DelayedLTI, attitude_bandwidth, crossover_frequency, damping_in_band,
-                         disturbance_rejection_bandwidth, disturbance_rejection_peak,
-                         gain_phase_margins, nichols_margin)
+from controllers import DelayedLTI, attitude_bandwidth, crossover_frequency, gain_phase_margins
+from controllers.metrics import (damping_in_band, disturbance_rejection_bandwidth, disturbance_rejection_peak, nichols_margin)
 from controllers.emf import FrequencyFunction
 
 DENSE = np.geomspace(0.01, 300.0, 20000)

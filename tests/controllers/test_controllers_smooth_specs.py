@@ -4,8 +4,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from controllers import (DMOSettings, EMFDesign, PIDGains, default_specs, dmo, evaluate_specs, hover_roll_plant,
-                         second_order_actuator, spec_by_name)
+from controllers import DMOSettings, EMFDesign, PIDGains, default_specs, dmo, evaluate_specs, hover_roll_plant
+from controllers.plants import second_order_actuator
+from controllers.specs import spec_by_name
 from controllers import metrics as m
 from controllers.nlp import _Problem, _gain_scale, _gains
 from controllers.smooth import (CrossoverMinimum, DisturbanceBandwidthFloor, DisturbancePeakLimit,

@@ -5,7 +5,7 @@ import control
 import numpy as np
 import pytest
 
-from aircraft.inflow.model_files import ModelFileError, load_record, shipped_models
+from aircraft.inflow.model_files import ModelFileError, load_record, shipped_model_path, shipped_models
 from aircraft.identification.shipped import PUBLISHED_FILES, RECIPES, published_record, stale_models
 from aircraft.inflow import IdentifiedInflow, PittPeters, RotorOperatingPoint
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE, PUBLISHED_MODELS, in_rotor_frames
@@ -121,3 +121,16 @@ def test_shipped_coaxial_lateral_cross_couplings_have_the_signs_of_converted_eq5
     assert np.sign(ours[4, 1]) != np.sign(printed[4, 1])
     from aircraft.wake import WakeSettings
     assert rec.settings["settings"]["wake"]["n_elements"] == WakeSettings().n_elements   # default resolution
+
+
+@pytest.mark.parametrize("entry, match", [(None, r"entry \(0, 1\) is not finite"),
+                                          ("x", "non-numeric"), (float("inf"), r"entry \(0, 1\) is not finite")])
+def test_a_non_finite_matrix_entry_is_refused_naming_file_and_entry(tmp_path, entry, match):
+    d = json.loads(shipped_model_path("uh60_hover_3state").read_text())
+    key = sorted(d["matrices"])[0]
+    d["matrices"][key][0][1] = entry
+    path = tmp_path / "damaged.json"
+    path.write_text(json.dumps(d).replace("Infinity", "1e999"))
+    with pytest.raises(ModelFileError, match=match) as err:
+        load_record(path)
+    assert str(path) in str(err.value) and repr(key) in str(err.value)
