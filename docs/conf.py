@@ -71,7 +71,7 @@ def _write_api_page(path="api.rst"):
              "Generated from the numpydoc docstrings at build time. Each package re-exports",
              "its public names in its ``__init__``; they are documented in the module that",
              "defines them.", "", ".. contents::", "   :local:", "   :depth: 1", ""]
-    for package in ("flightid", "aircraft", "controllers", "studies.cli"):
+    for package in ("flightid", "aircraft", "controllers", "studies.cli", "studies.analysis"):
         root = importlib.import_module(package)
         lines += [package, "-" * len(package), ""]
         if not hasattr(root, "__path__"):

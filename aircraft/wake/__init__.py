@@ -47,13 +47,13 @@ from .biot_savart import segment_velocity, segment_velocity_numpy, core_radius
 from .wake import FreeVortexWake, WakeDivergedError
 from .trim import WakeTrim, WakeTrimError, WakeInputError, trim_wake, run_wake
 from .sweeps import run_sweeps, MultisineSpec, SweepSpec, SweepSpecError
-from .cache import CACHE_ENV, CacheWarning, WakeCache, WakeCacheError, resolve_cache_dir
-from .executor import make_executor, SchedulerError, DaskNotInstalledError
+from .cache import CACHE_ENV, CacheStoreWarning, CacheWarning, CacheWriteError, WakeCache, WakeCacheError, resolve_cache_dir
+from .executor import make_executor, SchedulerError, DaskNotInstalledError, WorkerLostError
 
 __all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError",
            "segment_velocity", "segment_velocity_numpy", "core_radius",
            "FreeVortexWake", "WakeDivergedError",
            "WakeTrim", "WakeTrimError", "WakeInputError", "trim_wake", "run_wake",
            "run_sweeps", "MultisineSpec", "SweepSpec", "SweepSpecError",
-           "CACHE_ENV", "CacheWarning", "WakeCache", "WakeCacheError", "resolve_cache_dir",
-           "make_executor", "SchedulerError", "DaskNotInstalledError"]
+           "CACHE_ENV", "CacheWarning", "CacheStoreWarning", "CacheWriteError", "WakeCache", "WakeCacheError", "resolve_cache_dir",
+           "make_executor", "SchedulerError", "DaskNotInstalledError", "WorkerLostError"]
