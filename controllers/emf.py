@@ -101,15 +101,15 @@ def _eval(sys, s):
     return np.asarray(sys(s), dtype=complex).reshape(np.shape(s))
 
 
-def fit_inverse_plant(response, omega_range=(1.0, 12.0), order="0/1", n_points=40):
+def fit_inverse_plant(response, fit_range=(1.0, 12.0), order="0/1", n_points=40):
     """Low-order fit of the bare airframe + actuator + sensor, for the inverse plant.
 
     ``order="0/1"`` fits K/(s + a); ``"1/2"`` fits (b1 s + b0)/(s^2 + a1 s + a0).
     The cost is CIFER-like: magnitude error in dB and 0.01745 x phase error in
-    deg squared, on ``n_points`` log-spaced frequencies in ``omega_range``
+    deg squared, on ``n_points`` log-spaced frequencies in ``fit_range``
     [rad/s] (1-12 rad/s in the dissertation).  Returns a :class:`control.TransferFunction`.
     """
-    w = np.geomspace(*_fit_range(omega_range, "omega_range"), n_points)
+    w = np.geomspace(*_checked_fit_range(fit_range, "fit_range"), n_points)
     h = FrequencyFunction(response).response(w) if callable(response) and not hasattr(response, "response") \
         else response.response(w) if hasattr(response, "response") else np.squeeze(control.frequency_response(response, w).complex)
 
@@ -125,12 +125,12 @@ def fit_inverse_plant(response, omega_range=(1.0, 12.0), order="0/1", n_points=4
         dph = np.degrees(np.angle(hm / h))
         return np.concatenate([dmag, np.sqrt(0.01745) * dph])
 
-    k0 = np.abs(h[0]) * omega_range[0]
+    k0 = np.abs(h[0]) * fit_range[0]
     if order == "0/1":
-        x0 = [k0, omega_range[0]]
+        x0 = [k0, fit_range[0]]
         lb = [-np.inf, 1e-3]
     elif order == "1/2":
-        x0 = [k0, k0, 2 * omega_range[0], omega_range[0] ** 2]
+        x0 = [k0, k0, 2 * fit_range[0], fit_range[0] ** 2]
         lb = [-np.inf, -np.inf, 1e-3, 1e-6]
     else:
         raise ValueError(f"order must be '0/1' or '1/2', got {order!r}")
@@ -141,13 +141,13 @@ def fit_inverse_plant(response, omega_range=(1.0, 12.0), order="0/1", n_points=4
     return control.tf([x[0], x[1]], [1, x[2], x[3]])
 
 
-def fit_equivalent_delay(response, omega_range=(1.0, 12.0), n_points=40):
+def fit_equivalent_delay(response, fit_range=(1.0, 12.0), n_points=40):
     """Unit-gain + pure-delay fit e^{-tau s} of a nearly flat response (1-12 rad/s).
 
     Least squares on phase: tau = -sum(w phi) / sum(w^2), with phi the unwrapped
     phase [rad].  Returns tau [s].
     """
-    w = np.geomspace(*_fit_range(omega_range, "omega_range"), n_points)
+    w = np.geomspace(*_checked_fit_range(fit_range, "fit_range"), n_points)
     h = response.response(w)
     phase = np.unwrap(np.angle(h))
     # remove any 360-deg offset at the low end before the fit
@@ -158,7 +158,7 @@ def fit_equivalent_delay(response, omega_range=(1.0, 12.0), n_points=40):
         # response has. Synchronising with a negative delay is not realisable, so the
         # feed-forward uses none; say so rather than clip silently
         warnings.warn(f"equivalent delay fitted as {tau * 1e3:.3g} ms (< 0: the response leads the "
-                      f"inverse-plant model over {omega_range[0]:g}-{omega_range[1]:g} rad/s); tau_eq = 0 "
+                      f"inverse-plant model over {fit_range[0]:g}-{fit_range[1]:g} rad/s); tau_eq = 0 "
                       "is used", NegativeDelayWarning, stacklevel=2)
         return 0.0
     return tau
@@ -168,15 +168,15 @@ class NegativeDelayWarning(UserWarning):
     """The fitted equivalent delay was negative and 0 is used instead."""
 
 
-def _fit_range(omega_range, name):
+def _checked_fit_range(fit_range, name):
     """Validated (low, high) frequency band [rad/s] for a fit on a log grid."""
     try:
-        lo, hi = (float(v) for v in omega_range)
+        lo, hi = (float(v) for v in fit_range)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (low, high) in rad/s, got {omega_range!r}") from None
+        raise ValueError(f"{name} must be (low, high) in rad/s, got {fit_range!r}") from None
     if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
         raise ValueError(f"{name} must be (low, high) with 0 < low < high rad/s (a log-spaced fit "
-                         f"grid cannot include 0), got {omega_range!r}")
+                         f"grid cannot include 0), got {fit_range!r}")
     return lo, hi
 
 

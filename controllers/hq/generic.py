@@ -140,14 +140,14 @@ def olop_margin(loop, input_to_actuator, amplitude, limits):
     return float(duda_olop_limit(phase) - gain)
 
 
-def model_following_cost(response, command, omega_range=(1.0, 10.0), n_points=20):
+def model_following_cost(response, command, fit_range=(1.0, 10.0), n_points=20):
     """Model-following cost J (dissertation Eq. 3.13) between a response and its command model.
 
     Parameters
     ----------
     response, command : LTI, FrequencyFunction or callable H(s)
         Closed-loop response and the commanded response (e.g. the delayed command model).
-    omega_range : (float, float)
+    fit_range : (float, float)
         Frequency range [rad/s].
     n_points : int
         Log-spaced frequency points.
@@ -164,10 +164,10 @@ def model_following_cost(response, command, omega_range=(1.0, 10.0), n_points=20
     0.0
     """
     from flightid.fitting import cifer_cost
-    lo, hi = omega_range
+    lo, hi = fit_range
     if not (0 < lo < hi and np.isfinite(hi)) or int(n_points) < 2:
-        raise ValueError(f"model_following_cost: need 0 < omega_range[0] < omega_range[1] and n_points >= 2, "
-                         f"got {omega_range}, {n_points}")
+        raise ValueError(f"model_following_cost: need 0 < fit_range[0] < fit_range[1] and n_points >= 2, "
+                         f"got {fit_range}, {n_points}")
     w = np.geomspace(lo, hi, int(n_points))
     _, h = m.frequency_response_of(response, w)
     _, hc = m.frequency_response_of(command, w)

@@ -150,9 +150,9 @@ def test_search_refuses_bad_spans(kwargs, match):
 def test_fit_ranges_that_cannot_be_log_spaced_are_refused(band):
     from controllers.emf import FrequencyFunction, fit_equivalent_delay, fit_inverse_plant
     h = FrequencyFunction(lambda s: 2.0 / (s + 1.0))
-    with pytest.raises(ValueError, match="omega_range"):
+    with pytest.raises(ValueError, match="fit_range"):
         fit_inverse_plant(h, band)
-    with pytest.raises(ValueError, match="omega_range"):
+    with pytest.raises(ValueError, match="fit_range"):
         fit_equivalent_delay(h, band)
 
 
