@@ -263,6 +263,27 @@ def _check_channel(plant, channel):
                                   "another axis")
 
 
+def _structural_part(A, B, C, D):
+    """States reachable from B and seen by C through the nonzeros of A (an exact reduction)."""
+    n = A.shape[0]
+    nz = A != 0
+
+    def closure(start, step):
+        seen = set(np.flatnonzero(start))
+        todo = list(seen)
+        while todo:
+            k = todo.pop()
+            for j in np.flatnonzero(step(k)):
+                if j not in seen:
+                    seen.add(j)
+                    todo.append(j)
+        return seen
+    reach = closure(np.any(B != 0, axis=1), lambda k: nz[:, k])    # x_k drives x_j where A[j, k] != 0
+    seen = closure(np.any(C != 0, axis=0), lambda k: nz[k, :])     # x_j drives x_k where A[k, j] != 0
+    keep = sorted(reach & seen) if n else []
+    return A[np.ix_(keep, keep)], B[keep], C[:, keep], D
+
+
 #: inputs of every loop when its pilot path is left out (references, disturbance, stick)
 _LOOP_INPUTS = ("att_ref", "rate_ref", "att_d", "stick_s")
 
@@ -495,8 +516,10 @@ class MultiAxisEMF:
                                          name=f"att_meas_{a}"),
                 control.summing_junction(inputs=[f"rate_s_{a}", f"rate_d_{a}"], output=f"rate_m_{a}",
                                          name=f"rate_meas_{a}"),
-                control.ss([[0.0]], [[1.0, -1.0]], [[k.K_Iphi]], [[k.K_phi, -k.K_phi]],
-                           inputs=[f"att_ref_{a}", f"att_m_{a}"], outputs=f"fb_att_{a}", name=f"pi_att_{a}"),
+                # K_Iphi = 0: no integrator state (it would be an unobservable pole at the origin)
+                control.ss(*(([[0.0]], [[1.0, -1.0]], [[k.K_Iphi]]) if k.K_Iphi != 0 else ([], [], [])),
+                           [[k.K_phi, -k.K_phi]], inputs=[f"att_ref_{a}", f"att_m_{a}"], outputs=f"fb_att_{a}",
+                           name=f"pi_att_{a}"),
                 control.ss([], [], [], [[k.K_p, -k.K_p]], inputs=[f"rate_ref_{a}", f"rate_m_{a}"],
                            outputs=f"fb_rate_{a}", name=f"p_rate_{a}"),
                 control.summing_junction(inputs=[f"fb_att_{a}", f"fb_rate_{a}"], output=f"delta_fb_{a}",
@@ -546,14 +569,19 @@ class MultiAxisEMF:
 
         The single-axis plant the DMO designs ``axis`` on (sequential loop closure):
         a StateSpace named ``<rate_name>``/``<stick>`` (Padé for the other loops' delays).
+        States the stick cannot reach or the rate cannot see *structurally* (exact
+        zeros in A, B, C: a loop decoupled from this axis) are removed; no
+        tolerance decides it, so a coupled aircraft keeps every state and a
+        decoupled axis gets exactly its own plant.
         """
         self._index(axis)
         ch = self.channels[axis]
         others = [f"{x}_{a}" for a in self.axes if a != axis for x in _LOOP_INPUTS]
         sys = control.interconnect(self._blocks("plant", axis, pade_order), inplist=[ch.stick] + others,
                                    outlist=[f"rate_{axis}"], check_unused=False)
-        sys = control.ss(sys.A, sys.B[:, :1], sys.C, sys.D[:, :1], inputs=[ch.stick], outputs=[ch.rate_name])
-        return sys
+        A, B, C, D = _structural_part(np.asarray(sys.A), np.asarray(sys.B)[:, :1], np.asarray(sys.C),
+                                      np.asarray(sys.D)[:, :1])
+        return control.ss(A, B, C, D, inputs=[ch.stick], outputs=[ch.rate_name])
 
     def broken_loop_statespace(self, axis, pade_order=3):
         """L_i as a StateSpace: -delta_fb per delta_mx of ``axis``, other loops closed (Padé)."""

@@ -5,7 +5,7 @@ designed by :func:`controllers.dmo` on its *effective* plant: its signed rate
 per stick with every other loop closed at its current gains (an axis not yet
 designed in the first sweep is left open), the inverse plant and tau_eq
 re-fitted to that on-axis response. Sweeps repeat until no gain moves by more
-than ``gain_tolerance`` (relative), at most ``max_sweeps`` times; the first
+than ``gain_tolerance`` (its share of the controller at crossover), at most ``max_sweeps`` times; the first
 sweep runs the DMO's global stage, later sweeps continue locally from the
 current gains (the plants change little once the loops are closed).
 
@@ -111,10 +111,23 @@ def _effective_plant(plant, loops, axis, channels):
     return MultiAxisEMF(plant, {**loops, axis: slot}, channels).effective_plant(axis)
 
 
-def _relative_change(old, new):
-    a, b = old.as_array(), new.as_array()
-    # gains near zero (e.g. an unused integral) compare against the axis's largest gain
-    return float(np.max(np.abs(b - a) / np.maximum(np.abs(a), 1e-3 * max(np.max(np.abs(a)), 1e-12))))
+def _same(a, b):
+    return all(np.array_equal(np.asarray(x), np.asarray(y)) for x, y in zip((a.A, a.B, a.C, a.D), (b.A, b.B, b.C, b.D)))
+
+
+def _relative_change(old, new, crossover):
+    """Largest change of one gain's share of the controller at crossover, relative to |C(j w_c)|.
+
+    K_p, K_phi and K_Iphi carry different units (per rad/s, rad, rad s); what they do to
+    the loop is K_p, K_phi/w_c and K_Iphi/w_c^2 at the crossover w_c [rad/s]. A small
+    integral gain jittering by the DMO's bisection tolerance is then not read as a
+    design still moving, and a gain that matters is held to the tolerance.
+    """
+    wc = crossover if np.isfinite(crossover) and crossover > 0 else 1.0
+    scale = np.array([1.0 / wc, 1.0 / wc ** 2, 1.0])               # (K_phi, K_Iphi, K_p)
+    a, b = old.as_array() * scale, new.as_array() * scale
+    c = abs(a[2] + a[0] / (1j * wc) + a[1] / (1j * wc) ** 2)
+    return float(np.max(np.abs(b - a)) / max(c, 1e-12))
 
 
 @dataclass
@@ -284,7 +297,8 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     max_sweeps : int
         Most sweeps over the axes.
     gain_tolerance : float
-        Converged when no gain changes by more than this (relative) in a sweep.
+        Converged when, in a sweep, no gain's share of the controller at crossover
+        (K_p, K_phi/w_c, K_Iphi/w_c^2) changes by more than this fraction of |C(j w_c)|.
     progress : bool
         tqdm bar over the axis designs.
 
@@ -326,7 +340,7 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     gains = {a: (start_gains or {}).get(a, PIDGains(0.3, 0.1, 0.05)) for a in axes}
     cms = {a: (command_models or {}).get(a) or _default_command(AXIS_CHANNELS[a]) for a in axes}
     wc0 = {**DEFAULT_CROSSOVER_START, **(crossover_start or {})}
-    loops, designs, results, messages, rows = {}, {}, {}, {}, []
+    loops, designs, results, messages, rows, plants = {}, {}, {}, {}, [], {}
     bar = tqdm(total=len(axes) * max_sweeps, desc="multi-axis DMO", disable=not progress)
     converged, sweep = False, 0
     for sweep in range(max_sweeps):
@@ -335,6 +349,13 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
             bar.set_postfix(sweep=sweep + 1, axis=a)
             others = {b: loops[b] for b in axes if b != a and b in loops}
             eff = _effective_plant(plant, others, a, AXIS_CHANNELS)
+            if a in plants and _same(plants[a], eff):
+                # nothing this axis sees has changed (e.g. decoupled from the loops that moved): keep its design
+                rows.append({**rows[-len(axes)], "sweep": sweep + 1, "relative_change": 0.0, "wall_s": 0.0,
+                             "message": "effective plant unchanged: previous design kept"})
+                bar.update(1)
+                continue
+            plants[a] = eff
             design = AxisEMFDesign(eff, gains[a], axis=a, command_model=cms[a], actuator=actuator,
                                    sensor_delay=sensor_delay)
             factory = (lambda wc, wd, a=a: axis_specs(a, wc, wd, mte=mte))
@@ -359,7 +380,8 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
                     msg = (f"no gains meet every {a} spec at the starting boundaries (crossover "
                            f"{wc_start:.3g} rad/s); unmet: {', '.join(exc.unmet)}")
             results[a], messages[a] = res, msg
-            moved = _relative_change(gains[a], new.gains) if a in loops else np.inf
+            moved = (_relative_change(gains[a], new.gains, m.crossover_frequency(new.broken_loop()))
+                     if a in loops else np.inf)
             change = max(change, moved)
             gains[a], designs[a] = new.gains, new
             loops[a] = AxisLoop.from_design(new)
