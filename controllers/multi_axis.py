@@ -191,8 +191,10 @@ class AxisEMFDesign(EMFDesign):
     gains : PIDGains
     axis : str
         Key of :data:`AXIS_CHANNELS`.
+    command_model : CommandModel or RateCommandModel, optional
+        Default: attitude command for roll and pitch, rate command for yaw and heave.
     **kwargs
-        Passed to :class:`~controllers.emf.EMFDesign`.
+        Passed to :class:`~controllers.emf.EMFDesign` (actuator, sensor_delay [s], ...).
 
     Raises
     ------
@@ -624,6 +626,12 @@ class AxisView:
     ``attitude_response``, ``mixer_response_pilot``/``_disturbance``,
     ``commanded_attitude``, ``closed_loop_poles`` (the whole closed loop's) and
     ``rate_response_system`` (Padé state space).
+
+    Parameters
+    ----------
+    emf : MultiAxisEMF
+    axis : str
+        One of ``emf.axes``.
     """
 
     def __init__(self, emf, axis):

@@ -218,7 +218,8 @@ def test_coupled_design_reports_every_axis():
     assert (coupling.peak_gain_ratio > 0).all() and (coupling.peak_gain_ratio < 1).all()
     figs = res.plot()
     assert set(figs) == {"roll", "pitch"} and all(isinstance(f, Figure) for f in figs.values())
-    assert "roll axis" in figs["roll"]._suptitle.get_text()
+    legend = " ".join(t.get_text() for leg in figs["roll"].legends for t in leg.get_texts())
+    assert "roll axis" in legend and figs["pitch"].get_label() == "pitch axis HQ window"
 
 
 def test_an_axis_the_dmo_cannot_satisfy_is_named():
