@@ -31,7 +31,7 @@ closed is ``L_i = L_ii - L_io (I + L_oo)^{-1} L_oi``.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import control
 import numpy as np
@@ -305,7 +305,9 @@ class MultiAxisEMF:
         translational drift held (``aircraft.helicopter.hold.hold_states``).
     loops : dict
         Axis name (key of :data:`AXIS_CHANNELS`) -> :class:`AxisLoop`; the
-        order is kept in every matrix and table.
+        order is kept in every matrix and table. Each loop's inverse plant is a
+        low-order fit of its on-axis response (:func:`~controllers.multi_axis_design.design_multi_axis`
+        fits it on the axis's effective plant, the other loops closed).
     channels : dict, optional
         Axis name -> :class:`AxisChannel` (default :data:`AXIS_CHANNELS`).
 
@@ -350,8 +352,8 @@ class MultiAxisEMF:
                 raise SignalNameError(f"the plant has no {kind}(s) {missing} (needed by the "
                                       f"{', '.join(self.axes)} loops); its {kind}s: {pool}")
         for a in self.axes:
-            if self.loops[a].command_model is None:
-                self.loops[a].command_model = _default_command(self.channels[a])
+            if self.loops[a].command_model is None:   # a copy: the caller's loop is left as given
+                self.loops[a] = replace(self.loops[a], command_model=_default_command(self.channels[a]))
             if self.loops[a].inverse_plant is None:
                 raise ValueError(f"the {a} loop needs an inverse plant (fit it on the on-axis response, "
                                  "e.g. with design_multi_axis or AxisEMFDesign)")

@@ -177,7 +177,9 @@ class MultiAxisResult:
             Index axis; ``crossover_design`` is the single-axis design plant's crossover
             (equal to the MIMO one at the sweeps' fixed point); ``unmet`` names every
             Level-1 spec missed on the simultaneous closed loop; ``limiting`` the
-            DMO's limiting spec(s) above the final boundary.
+            DMO's limiting spec(s) above the final boundary. The eigenvalue specs
+            (EigLcG1, EigDpG1) grade every pole of the simultaneous closed loop, so
+            they read the same on every axis.
         """
         rows = []
         for a in self.emf.axes:
