@@ -36,10 +36,10 @@ from dataclasses import dataclass, replace
 import control
 import numpy as np
 
-from .emf import CommandModel, EMFDesign, FrequencyFunction, PIDGains, _as_delayed, _eval
+from .emf import CommandModel, FrequencyFunction, PIDGains, _eval
 
-__all__ = ["AxisChannel", "AXIS_CHANNELS", "RateCommandModel", "AxisLoop", "AxisEMFDesign", "MultiAxisEMF",
-           "AxisView", "SignalNameError"]
+__all__ = ["AxisChannel", "AXIS_CHANNELS", "RateCommandModel", "AxisLoop", "MultiAxisEMF", "AxisView",
+           "SignalNameError"]
 
 
 class SignalNameError(ValueError):
@@ -171,98 +171,6 @@ class AxisLoop:
         """The loop of a single-axis :class:`~controllers.emf.EMFDesign` (same gains, fits, hardware)."""
         return cls(design.gains, design.command_model, design.inverse_plant, design.equivalent_delay,
                    design.actuator, design.sensor_delay)
-
-
-class AxisEMFDesign(EMFDesign):
-    """A single-axis EMF design on any channel of :data:`AXIS_CHANNELS` (heave and signs included).
-
-    :class:`~controllers.emf.EMFDesign` checks the signal names of the roll,
-    pitch and yaw rate plants; this subclass checks them against the channel
-    (``"-q"``/``delta_lon`` for the nose-down pitch axis, ``"-w"``/``delta_col``
-    for heave), accepts :class:`RateCommandModel`, and leaves the rate command's
-    integrator (a pole at the origin of the command model, by definition of a
-    rate response type) out of the closed-loop poles. Everything else,
-    the DMO included, is the base class's.
-
-    Parameters
-    ----------
-    plant : DelayedLTI or control LTI
-        Signed on-axis rate response (e.g. :meth:`MultiAxisEMF.effective_plant`).
-    gains : PIDGains
-    axis : str
-        Key of :data:`AXIS_CHANNELS`.
-    command_model : CommandModel or RateCommandModel, optional
-        Default: attitude command for roll and pitch, rate command for yaw and heave.
-    **kwargs
-        Passed to :class:`~controllers.emf.EMFDesign` (actuator, sensor_delay [s], ...).
-
-    Raises
-    ------
-    SignalNameError
-        The plant's named signals are another channel's.
-
-    Examples
-    --------
-    >>> import control
-    >>> plant = control.ss(control.tf([2.0], [1.0, 1.0]), inputs="delta_col", outputs="-w")
-    >>> d = AxisEMFDesign(plant, PIDGains(0.5, 0.1, 1.0), axis="heave")
-    >>> d.axis, d.plant.system.output_labels
-    ('heave', ['-w'])
-    """
-
-    def __init__(self, plant, gains, axis="roll", command_model=None, **kwargs):
-        if axis not in AXIS_CHANNELS:
-            raise ValueError(f"axis must be one of {list(AXIS_CHANNELS)}, got {axis!r}")
-        channel = AXIS_CHANNELS[axis]
-        named = _as_delayed(plant)
-        _check_channel(named, channel)
-        # the base class knows three unsigned axes; the channel's names were checked above
-        sys = named.system
-        anonymous = control.ss(control.ss(sys).A, control.ss(sys).B, control.ss(sys).C, control.ss(sys).D)
-        super().__init__(type(named)(anonymous, named.delay, named.name), gains,
-                         command_model or _default_command(channel), axis="roll", **kwargs)
-        self.plant = named
-        self.axis = axis
-        self.channel = channel
-
-    def _retyped(self, new):
-        new.__class__ = type(self)
-        return new
-
-    def with_gains(self, gains):
-        return self._retyped(super().with_gains(gains))
-
-    def with_plant(self, plant):
-        named = _as_delayed(plant)
-        _check_channel(named, self.channel)
-        new = object.__new__(type(self))
-        new.__dict__.update(self.__dict__)
-        new.plant = named
-        new._cache = {k: v for k, v in self._cache.items() if k[0] == "fixed"}
-        return new
-
-    def _fixed_poles(self, pade_order):
-        poles = super()._fixed_poles(pade_order)
-        if isinstance(self.command_model, RateCommandModel):
-            # the command block's integrator: the commanded heading/height ramps under a
-            # held control by definition of a rate response type (not a closed-loop mode)
-            k = int(np.argmin(np.abs(poles)))
-            if abs(poles[k]) < 1e-8:
-                poles = np.delete(poles, k)
-        return poles
-
-    def rate_response_system(self, pade_order=3):
-        """Closed-loop signed rate per pilot stick as a SISO StateSpace (Padé delays)."""
-        return self.closed_loop(pade_order)[0, 0]
-
-
-def _check_channel(plant, channel):
-    out, inp = plant.system.output_labels[0], plant.system.input_labels[0]
-    for what, got, want in (("output", out, channel.rate_name), ("input", inp, channel.stick)):
-        if not (got.startswith(("u[", "y[")) or got == want):
-            raise SignalNameError(f"the plant {plant.name or ''} is {out}/{inp} but the {channel.axis} loop "
-                                  f"needs {channel.rate_name}/{channel.stick}: its {what} {got!r} belongs to "
-                                  "another axis")
 
 
 def _structural_part(A, B, C, D):

@@ -1,5 +1,9 @@
 """Tune every axis of a :class:`~controllers.multi_axis.MultiAxisEMF` with the single-axis DMO.
 
+:class:`AxisEMFDesign` is the single-axis design of one channel (heave and the
+signed pitch axis included) that the DMO tunes; :func:`design_multi_axis` runs the
+sweeps and returns a :class:`MultiAxisResult` (table, couplings, HQ windows).
+
 Sequential loop closure with iteration. In a sweep each axis in turn is
 designed by :func:`controllers.dmo` on its *effective* plant: its signed rate
 per stick with every other loop closed at its current gains (an axis not yet
@@ -39,13 +43,14 @@ from tqdm.auto import tqdm
 from . import metrics as m
 from .dmo import dmo
 from .dmo_settings import DMOSettings, InfeasibleDesignError
-from .emf import PIDGains
+from .emf import EMFDesign, PIDGains, _as_delayed
 from .hq.selector import specs_for
-from .multi_axis import AXIS_CHANNELS, AxisEMFDesign, AxisLoop, MultiAxisEMF, _default_command
+from .multi_axis import (AXIS_CHANNELS, AxisLoop, MultiAxisEMF, RateCommandModel, SignalNameError,
+                         _default_command)
 from .plants import second_order_actuator
 from .specs import evaluate_specs
 
-__all__ = ["axis_specs", "design_multi_axis", "MultiAxisResult", "DEFAULT_CROSSOVER_START"]
+__all__ = ["AxisEMFDesign", "axis_specs", "design_multi_axis", "MultiAxisResult", "DEFAULT_CROSSOVER_START"]
 
 #: first crossover boundary the DMO tries per axis [rad/s] (heave loops cross lower)
 DEFAULT_CROSSOVER_START = {"roll": 1.5, "pitch": 1.5, "yaw": 1.0, "heave": 0.5}
@@ -53,6 +58,98 @@ DEFAULT_CROSSOVER_START = {"roll": 1.5, "pitch": 1.5, "yaw": 1.0, "heave": 0.5}
 _TIME_HISTORY_FAMILIES = ("large_amplitude", "coupling")
 #: later sweeps restart the boundary raise at this fraction of the boundary reached
 _RESTART = 0.95
+
+
+class AxisEMFDesign(EMFDesign):
+    """A single-axis EMF design on any channel of :data:`AXIS_CHANNELS` (heave and signs included).
+
+    :class:`~controllers.emf.EMFDesign` checks the signal names of the roll,
+    pitch and yaw rate plants; this subclass checks them against the channel
+    (``"-q"``/``delta_lon`` for the nose-down pitch axis, ``"-w"``/``delta_col``
+    for heave), accepts :class:`RateCommandModel`, and leaves the rate command's
+    integrator (a pole at the origin of the command model, by definition of a
+    rate response type) out of the closed-loop poles. Everything else,
+    the DMO included, is the base class's.
+
+    Parameters
+    ----------
+    plant : DelayedLTI or control LTI
+        Signed on-axis rate response (e.g. :meth:`MultiAxisEMF.effective_plant`).
+    gains : PIDGains
+    axis : str
+        Key of :data:`AXIS_CHANNELS`.
+    command_model : CommandModel or RateCommandModel, optional
+        Default: attitude command for roll and pitch, rate command for yaw and heave.
+    **kwargs
+        Passed to :class:`~controllers.emf.EMFDesign` (actuator, sensor_delay [s], ...).
+
+    Raises
+    ------
+    SignalNameError
+        The plant's named signals are another channel's.
+
+    Examples
+    --------
+    >>> import control
+    >>> plant = control.ss(control.tf([2.0], [1.0, 1.0]), inputs="delta_col", outputs="-w")
+    >>> d = AxisEMFDesign(plant, PIDGains(0.5, 0.1, 1.0), axis="heave")
+    >>> d.axis, d.plant.system.output_labels
+    ('heave', ['-w'])
+    """
+
+    def __init__(self, plant, gains, axis="roll", command_model=None, **kwargs):
+        if axis not in AXIS_CHANNELS:
+            raise ValueError(f"axis must be one of {list(AXIS_CHANNELS)}, got {axis!r}")
+        channel = AXIS_CHANNELS[axis]
+        named = _as_delayed(plant)
+        _check_channel(named, channel)
+        # the base class knows three unsigned axes; the channel's names were checked above
+        sys = named.system
+        anonymous = control.ss(control.ss(sys).A, control.ss(sys).B, control.ss(sys).C, control.ss(sys).D)
+        super().__init__(type(named)(anonymous, named.delay, named.name), gains,
+                         command_model or _default_command(channel), axis="roll", **kwargs)
+        self.plant = named
+        self.axis = axis
+        self.channel = channel
+
+    def _retyped(self, new):
+        new.__class__ = type(self)
+        return new
+
+    def with_gains(self, gains):
+        return self._retyped(super().with_gains(gains))
+
+    def with_plant(self, plant):
+        named = _as_delayed(plant)
+        _check_channel(named, self.channel)
+        new = object.__new__(type(self))
+        new.__dict__.update(self.__dict__)
+        new.plant = named
+        new._cache = {k: v for k, v in self._cache.items() if k[0] == "fixed"}
+        return new
+
+    def _fixed_poles(self, pade_order):
+        poles = super()._fixed_poles(pade_order)
+        if isinstance(self.command_model, RateCommandModel):
+            # the command block's integrator: the commanded heading/height ramps under a
+            # held control by definition of a rate response type (not a closed-loop mode)
+            k = int(np.argmin(np.abs(poles)))
+            if abs(poles[k]) < 1e-8:
+                poles = np.delete(poles, k)
+        return poles
+
+    def rate_response_system(self, pade_order=3):
+        """Closed-loop signed rate per pilot stick as a SISO StateSpace (Padé delays)."""
+        return self.closed_loop(pade_order)[0, 0]
+
+
+def _check_channel(plant, channel):
+    out, inp = plant.system.output_labels[0], plant.system.input_labels[0]
+    for what, got, want in (("output", out, channel.rate_name), ("input", inp, channel.stick)):
+        if not (got.startswith(("u[", "y[")) or got == want):
+            raise SignalNameError(f"the plant {plant.name or ''} is {out}/{inp} but the {channel.axis} loop "
+                                  f"needs {channel.rate_name}/{channel.stick}: its {what} {got!r} belongs to "
+                                  "another axis")
 
 
 def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", **selector):

@@ -11,9 +11,8 @@ import pytest
 from matplotlib.figure import Figure
 
 from controllers import DMOSettings, PIDGains, dmo, evaluate_specs
-from controllers.multi_axis import (AXIS_CHANNELS, AxisEMFDesign, AxisLoop, MultiAxisEMF, RateCommandModel,
-                                    SignalNameError)
-from controllers.multi_axis_design import axis_specs, design_multi_axis
+from controllers.multi_axis import AXIS_CHANNELS, AxisLoop, MultiAxisEMF, RateCommandModel, SignalNameError
+from controllers.multi_axis_design import AxisEMFDesign, axis_specs, design_multi_axis
 from controllers.plants import first_order_actuator
 
 W = np.geomspace(0.1, 30.0, 25)
