@@ -8,6 +8,7 @@
     coaxial_200kt           the 200 kt model beside Table 6.3; the isolated-rotor check (Figs. 7.7-7.10)
     forward_flight          single-rotor forward-flight models beside Pitt-Peters and Eqs. 4.7-4.8
 
-The studies import them from their modules; the tests test them directly (they are
-research code with tests, not study scripts).
+The studies import them from their modules; their tests live beside them
+(``studies/analysis/tests``, collected by ``make test``): research code with tests,
+kept out of the library and out of ``tests/``.
 """
