@@ -20,7 +20,7 @@ def test_command_table_is_the_cli_registry():
     from studies.cli import STUDIES
     rows = re.findall(r"^\| `rotorwake ([a-z0-9-]+)` \|", README, re.M)
     assert len(rows) == len(set(rows))
-    assert set(rows) == set(STUDIES) | {"results", "check-results"}
+    assert set(rows) == set(STUDIES) | {"results", "check-results", "shipped-models"}
 
 
 def test_links_resolve():
