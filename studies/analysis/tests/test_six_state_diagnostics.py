@@ -3,6 +3,8 @@ import numpy as np
 import pytest
 from flightid import MeasuredResponse
 
+from aircraft.identification.structures.axisymmetric import Coaxial6StateAxisymmetric
+
 
 def _rotation(psi):
     c, s = np.cos(psi), np.sin(psi)
@@ -75,11 +77,6 @@ def test_six_state_diagnostics_pinned_mass_row_recovers_eq_5_3_on_its_own_data()
     assert set(pairs.fit) == set(summary.fit)
 
 
-import numpy as np
-import pytest
-from aircraft.identification.structures.axisymmetric import Coaxial6StateAxisymmetric
-from flightid import MeasuredResponse
-
 
 OMEGA = 23.7                     # rotor speed [rad/s]
 
@@ -95,32 +92,11 @@ TRUTH = {"m11": 0.85, "m14": -0.4, "m41": 0.6, "m44": 1.05, "m22": -0.25, "m25":
          "t55": 0.01}
 
 
-def _by_hand(v, p):
-    """``M`` (p="m") or ``Lbar`` (p="l") of our frames written out from the module's table."""
-    g = lambda k: v[f"{p}{k}"]  # noqa: E731
-    return np.array([[g(11), 0, 0, g(14), 0, 0],
-                     [0, g(22), g(23), 0, g(25), g(26)],
-                     [0, -g(23), g(22), 0, g(26), -g(25)],
-                     [g(41), 0, 0, g(44), 0, 0],
-                     [0, g(52), g(53), 0, g(55), g(56)],
-                     [0, g(53), -g(52), 0, -g(56), g(55)]])
-
-
-def _delays(v):
-    t = np.zeros((6, 6))
-    for (rows, cols), name in {((0,), (0,)): "t11", ((0,), (3,)): "t14", ((3,), (0,)): "t41",
-                               ((3,), (3,)): "t44", ((1, 2), (1, 2)): "t22", ((1, 2), (4, 5)): "t25",
-                               ((4, 5), (1, 2)): "t52", ((4, 5), (4, 5)): "t55"}.items():
-        t[np.ix_(rows, cols)] = v[name]
-    return t
-
-
 def _exact_data(values=TRUTH):
-    m, lb, tau = _by_hand(values, "m"), _by_hand(values, "l"), _delays(values)
-    s = 1j * W / OMEGA
-    h = np.moveaxis(np.linalg.inv(m[None] * s[:, None, None] + lb[None]), 0, -1)
-    h = h * np.exp(-1j * W[None, None, :] * tau[:, :, None])
+    # the structure's own response: its matrices are checked against a hand-written oracle in
+    # tests/aircraft/identification/test_coaxial_6state_axisymmetric.py
     st = Coaxial6StateAxisymmetric()
+    h = st.build(values, OMEGA).frequency_response(W)
     return st, MeasuredResponse(h, W, np.ones(h.shape), st.inputs, st.outputs)
 
 
