@@ -324,7 +324,7 @@ def synthetic(duration_sweep=100.0, duration_multisine=200.0, noise=0.02, seed=0
     lag = sig.StateSpace(-20.0 * np.eye(6), 20.0 * k_mix, np.eye(6), np.zeros((6, 6)))
     _, loads, _ = sig.lsim(lag, ms.U, ms.t)
     loads = loads.T
-    lam = simulate_mltau(model.M, model.L, model.tau, model.omega, ms.t, loads)
+    lam = simulate_mltau(model.M, model.Lbar, model.tau, model.omega, ms.t, loads)
     rng = np.random.default_rng(seed + 1)
     lam = lam + noise * rng.standard_normal(lam.shape) * lam.std(axis=1, keepdims=True)
     loads = loads + noise * rng.standard_normal(loads.shape) * loads.std(axis=1, keepdims=True)

@@ -21,7 +21,7 @@ class MLTauFeedthroughStructure(MLTauStructure):
 
     Parameters
     ----------
-    M, L, tau
+    M, Lbar, tau
         As in :class:`flightid.MLTauStructure`.
     D : pattern matrix (n_outputs x n_inputs)
         Direct gains [output units per input unit]; names are parameters, shared
@@ -34,20 +34,20 @@ class MLTauFeedthroughStructure(MLTauStructure):
         :class:`flightid.MLTauStructure`.
     """
 
-    def __init__(self, M, L, tau=None, D=None, *, inputs, outputs, initial, fixed=(), C=None, omega=None,
+    def __init__(self, M, Lbar, tau=None, D=None, *, inputs, outputs, initial, fixed=(), C=None, omega=None,
                  states=None):
         if D is None:
             raise IdentificationError("MLTauFeedthroughStructure needs a D pattern "
                                       "(use MLTauStructure for none)")
         self._d_pattern = D
-        super().__init__(M, L, tau, inputs=inputs, outputs=outputs, initial=initial, fixed=fixed, C=C,
+        super().__init__(M, Lbar, tau, inputs=inputs, outputs=outputs, initial=initial, fixed=fixed, C=C,
                          omega=omega, states=states)
         if self._patterns["D"].shape != (len(self.outputs), len(self.inputs)):
             raise IdentificationError(f"D must be {len(self.outputs)} x {len(self.inputs)}, "
                                       f"got {self._patterns['D'].shape}")
 
     def _init_parameters(self, patterns, inputs, outputs, initial, fixed, omega):
-        # D's parameters join M's, L's and tau's in one bookkeeping
+        # D's parameters join M's, Lbar's and tau's in one bookkeeping
         super()._init_parameters(dict(patterns, D=self._d_pattern), inputs, outputs, initial, fixed, omega)
 
     def _undelayed(self, mats, s):

@@ -7,7 +7,7 @@ single-rotor hover M/Lbar/tau form (Eq. 2.11 with Eq. 2.15 delays)::
 
     MLTauStructure(
         M=[["M11", 0, 0], [0, "M22", 0], [0, 0, "M22"]],      # M33 tied to M22
-        L=[["L11", 0, 0], [0, "L22", 0], [0, 0, "L22"]],
+        Lbar=[["L11", 0, 0], [0, "L22", 0], [0, 0, "L22"]],
         tau=[["t1", 0, 0], [0, "t2", 0], [0, 0, "t2"]],
         inputs=["CT", "CL", "CM"], outputs=["lam0", "lam1s", "lam1c"],
         initial={"M11": 0.8, ...}, omega=27.0)
@@ -256,8 +256,9 @@ class MLTauStructure(ModelStructure):
 
     Parameters
     ----------
-    M, L : pattern matrices (n_states x n_states)
-        Apparent-mass and (inverse) gain matrices; ``L`` is the dissertation's Lbar.
+    M, Lbar : pattern matrices (n_states x n_states)
+        Apparent-mass and inverse-gain matrices (``Lbar = [L]^-1`` of the
+        dissertation's notation).
     tau : pattern matrix (n_states x n_inputs), optional
         Delays [s]; entry (i, j) delays input j in the equation solved for state i.
         With ``C`` not the identity the delays are applied per *output* row.
@@ -273,12 +274,12 @@ class MLTauStructure(ModelStructure):
     states : list of str, optional
     """
 
-    def __init__(self, M, L, tau=None, *, inputs, outputs, initial, fixed=(), C=None,
+    def __init__(self, M, Lbar, tau=None, *, inputs, outputs, initial, fixed=(), C=None,
                  omega=None, states=None):
-        self._init_parameters({"M": M, "L": L, "tau": tau}, inputs, outputs, initial, fixed, omega)
+        self._init_parameters({"M": M, "Lbar": Lbar, "tau": tau}, inputs, outputs, initial, fixed, omega)
         n = self._patterns["M"].shape[0]
-        if self._patterns["M"].shape != (n, n) or self._patterns["L"].shape != (n, n):
-            raise IdentificationError("M and L must be square and of the same size")
+        if self._patterns["M"].shape != (n, n) or self._patterns["Lbar"].shape != (n, n):
+            raise IdentificationError("M and Lbar must be square and of the same size")
         if n != len(self.inputs):
             raise IdentificationError(f"M/Lbar form needs as many inputs as states ({n}), got {len(self.inputs)}")
         self.C = np.eye(n) if C is None else np.asarray(C, dtype=float)
@@ -292,13 +293,13 @@ class MLTauStructure(ModelStructure):
         return self.states if self.states and len(self.states) == n else super()._state_names(n)
 
     def _undelayed(self, mats, s):
-        m, lb = mats["M"], mats["L"]
+        m, lb = mats["M"], mats["Lbar"]
         sm = self._s_model(s)
         inv = np.linalg.inv(m[None, :, :] * sm[:, None, None] + lb[None, :, :])
         return np.moveaxis(self.C @ inv, 0, -1)
 
     def _abcd(self, mats):
-        m, lb = mats["M"], mats["L"]
+        m, lb = mats["M"], mats["Lbar"]
         try:
             minv = np.linalg.inv(m)
         except np.linalg.LinAlgError as err:

@@ -146,7 +146,7 @@ def run_study(settings=None, *, out_dir="results/coaxial_wake_identification", v
     cost, params = tables(model)
     _write_model(model, cost, params, out, "_6state")
     mats = model.fit.structure.matrices()
-    for name, key in (("M_azimuth", "M"), ("Lbar", "L"), ("tau_s", "tau")):
+    for name, key in (("M_azimuth", "M"), ("Lbar", "Lbar"), ("tau_s", "tau")):
         pd.DataFrame(mats[key], index=STRUCTURE.outputs, columns=STRUCTURE.loads).to_csv(out / f"{name}_6state.csv")
     plt.close("all")
     diag = None

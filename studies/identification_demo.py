@@ -62,7 +62,7 @@ def run_demo(seed=0, out_dir="results/identification_demo", noise=0.02, verbose=
     t, d = doublet(1e-3, 0.5, 0.005, 6.0, start=0.5)
     loads = np.array([a * np.interp(t - lag, t, d, left=0.0)
                       for a, lag in [(1, 0), (0.8, 0.3), (-0.6, 0.6), (-0.5, 0.1), (0.7, 0.9), (0.4, 1.2)]])
-    lam = simulate_mltau(model.M, model.L, model.tau, model.omega, t, loads)
+    lam = simulate_mltau(model.M, model.Lbar, model.tau, model.omega, t, loads)
     check = verify(result.model, t, loads, lam)
     elapsed = time.perf_counter() - t0
 

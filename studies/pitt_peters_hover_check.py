@@ -69,7 +69,7 @@ def forward_flight(out, ct, omega):
         sys = PittPeters().linear(np.array([ct, 0.0, 0.0]), (RotorOperatingPoint(omega, mu=mu),))
         m, lbar = mlbar_from_statespace(sys, omega)
         for name, (i, j) in (("11", (0, 0)), ("22", (1, 1)), ("33", (2, 2)), ("13", (0, 2)), ("31", (2, 0))):
-            rows.append((mu, f"Lbar{name}", lbar[i, j], ident.L[i, j]))
+            rows.append((mu, f"Lbar{name}", lbar[i, j], ident.Lbar[i, j]))
         rows.append((mu, "M11/Omega [s]", m[0, 0] / omega, ident.M[0, 0]))
         rows.append((mu, "M22/Omega [s]", m[1, 1] / omega, ident.M[1, 1]))
     table = pd.DataFrame(rows, columns=["mu", "coefficient", "ours (Pitt-Peters, linearised)",

@@ -80,7 +80,7 @@ def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, out_dir="results/wake_i
         print(table.to_string(index=False, float_format=fmt))
         print(f"quasi-steady lam0/C_T gain 1/Lbar11 = {gain:.3f}; momentum 1/(4 lam_h) = "
               f"{1 / (4 * lam_h):.3f}; ratio {gain * 4 * lam_h:.2f} (dissertation's MFW: "
-              f"{UH60_HOVER_PITT_PETERS.L[0, 0] / UH60_HOVER_MFW.L[0, 0]:.2f})")
+              f"{UH60_HOVER_PITT_PETERS.Lbar[0, 0] / UH60_HOVER_MFW.Lbar[0, 0]:.2f})")
         print(f"tables and figures in {out}/  (wall {time.perf_counter() - t_start:.0f} s)")
     return table, model
 

@@ -296,7 +296,7 @@ class DesignSpaceResult:
                 f"h/R {p.spacing:g}, C_T {p.ct:g}: {p.error}" for p in self.failed))
         shape = (len(self.spacings), len(self.cts))
         n = len(_STRUCTURE.outputs)
-        grid = {k: np.zeros(shape + (n, n)) for k in ("M", "L", "tau")}
+        grid = {k: np.zeros(shape + (n, n)) for k in ("M", "Lbar", "tau")}
         grid.update(loads_ref=np.zeros(shape + (n,)), inflow_ref=np.zeros(shape + (n,)))
         trusted = np.zeros(shape, bool)
         omegas = set()
@@ -304,7 +304,7 @@ class DesignSpaceResult:
             for j, c in enumerate(self.cts):
                 m = self.point(s, c).model
                 mats = m.fit.structure.matrices()
-                grid["M"][i, j], grid["L"][i, j], grid["tau"][i, j] = mats["M"], mats["L"], mats["tau"]
+                grid["M"][i, j], grid["Lbar"][i, j], grid["tau"][i, j] = mats["M"], mats["Lbar"], mats["tau"]
                 grid["loads_ref"][i, j], grid["inflow_ref"][i, j] = m._refs()
                 trusted[i, j] = m.trusted
                 omegas.add(round(m.omega, 9))

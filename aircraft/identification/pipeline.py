@@ -285,7 +285,7 @@ class IdentifiedModel:
         mats = self.fit.structure.matrices()
         loads_ref, inflow_ref = self._refs()
         if self.structure.form == "mltau":
-            matrices = {"M": mats["M"], "L": mats["L"], "tau": mats["tau"]}
+            matrices = {"M": mats["M"], "Lbar": mats["Lbar"], "tau": mats["tau"]}
         else:   # F, G per d/dpsi in the structure: store seconds
             matrices = {"F": self.omega * mats["F"], "G": self.omega * mats["G"], "C": self.fit.structure.C}
             if mats.get("tau") is not None and np.any(mats["tau"] > 0):

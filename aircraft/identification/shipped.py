@@ -121,9 +121,12 @@ def published_record(key):
         form, mats = "fgc", {"F": model.F, "G": model.G, "C": model.C}
         inputs = list(model.input_order)
     else:
-        form, mats = "mltau", {"M": model.M, "L": model.L, "tau": model.tau}
+        form, mats = "mltau", {"M": model.M, "Lbar": model.Lbar, "tau": model.tau}
         inputs = list(model.input_names)
-    payload = {"printed": key, "matrices": mats, "frame_conversion": "aircraft.inflow.frames/1"}
+    # hashed under the file's matrix keys (Lbar is "L" on disk), so the hash of a
+    # published file does not depend on the in-memory name
+    payload = {"printed": key, "matrices": {("L" if k == "Lbar" else k): v for k, v in mats.items()},
+               "frame_conversion": "aircraft.inflow.frames/1"}
     return ModelRecord(name=key, form=form, rotors=model.rotors, omega=model.omega, matrices=mats,
                        inputs=inputs, outputs=list(model.output_names), loads_ref=ref.loads_ref,
                        inflow_ref=ref.inflow_ref, frame="rotor", time=getattr(model, "time", "azimuth"),

@@ -20,12 +20,12 @@ __all__ = ["simulate_mltau", "mixing_matrix", "coaxial_sweep_set", "SWASHPLATE_C
 SWASHPLATE_CONTROLS = ["theta0_U", "theta1s_U", "theta1c_U", "theta0_L", "theta1s_L", "theta1c_L"]
 
 
-def simulate_mltau(M, L, tau, omega, t, u):
-    """Time response of ``M lam' + L lam = u(t - tau)`` (d/dpsi, psi = omega t).
+def simulate_mltau(M, Lbar, tau, omega, t, u):
+    """Time response of ``M lam' + Lbar lam = u(t - tau)`` (d/dpsi, psi = omega t).
 
     Parameters
     ----------
-    M, L, tau : (n, n) array_like
+    M, Lbar, tau : (n, n) array_like
         Apparent mass and Lbar (azimuth time, dimensionless) and delays [s].
     omega : float
         Rotor speed [rad/s].
@@ -40,10 +40,10 @@ def simulate_mltau(M, L, tau, omega, t, u):
         lambda(t), starting from rest.
     """
     M = np.asarray(M, float)
-    L = np.asarray(L, float)
+    Lbar = np.asarray(Lbar, float)
     tau = np.asarray(tau, float)
     n = M.shape[0]
-    a = -omega * np.linalg.solve(M, L)
+    a = -omega * np.linalg.solve(M, Lbar)
     b = omega * np.linalg.inv(M)
     system = sig.StateSpace(a, b, np.eye(n), np.zeros((n, n)))
     out = np.zeros((n, np.size(t)))
@@ -83,7 +83,7 @@ def coaxial_sweep_set(model, *, seed=0, dt=0.01, duration=100.0, noise=0.02, w_m
 
     Parameters
     ----------
-    model : object with ``M``, ``L``, ``tau``, ``omega`` (azimuth-time M)
+    model : object with ``M``, ``Lbar``, ``tau``, ``omega`` (azimuth-time M)
     seed : int
     dt, duration : float
         Sample time and record length [s].
@@ -108,7 +108,7 @@ def coaxial_sweep_set(model, *, seed=0, dt=0.01, duration=100.0, noise=0.02, w_m
         theta[j] = s
         _, loads, _ = sig.lsim(lag, theta.T, t)
         loads = loads.T
-        lam = simulate_mltau(model.M, model.L, model.tau, model.omega, t, loads)
+        lam = simulate_mltau(model.M, model.Lbar, model.tau, model.omega, t, loads)
         lam_n = lam + noise * rng.standard_normal(lam.shape) * lam.std(axis=1, keepdims=True)
         loads_n = loads + noise * rng.standard_normal(loads.shape) * loads.std(axis=1, keepdims=True)
         runs.append({"t": t, "theta": s, "control": j, "loads": loads_n, "lam": lam_n,
@@ -141,7 +141,7 @@ def printed_6state_values(model):
     Parameters
     ----------
     model : object
-        Printed 6-state M-L-tau model (``M``, ``L``, ``tau`` matrices, ``frame``).
+        Printed 6-state M-L-tau model (``M``, ``Lbar``, ``tau`` matrices, ``frame``).
 
     Returns
     -------

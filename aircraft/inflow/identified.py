@@ -45,13 +45,13 @@ def _pade_ss(tau, order):
 NEGLIGIBLE_DELAY = 1e-6
 
 
-def mltau_statespace(M, L, tau=None, *, omega, time="azimuth", pade_order=2,
+def mltau_statespace(M, Lbar, tau=None, *, omega, time="azimuth", pade_order=2,
                      inputs=None, outputs=None, name="M/Lbar/tau", delays="rowwise"):
     """Realise ``M lam' + Lbar lam = u(t - tau)`` (row-wise delays, Eq. 2.16) in seconds.
 
     Parameters
     ----------
-    M, L : (n, n) array_like
+    M, Lbar : (n, n) array_like
         Apparent-mass and ``Lbar = [L]^-1`` matrices (dimensionless loads and inflow).
     tau : (n, n) array_like, optional
         Delays [s]. Following Eq. 2.16, output ``i`` responds to input ``j`` delayed
@@ -76,10 +76,10 @@ def mltau_statespace(M, L, tau=None, *, omega, time="azimuth", pade_order=2,
         Minimal realisation, time in seconds, strictly proper (D = 0).
     """
     M = np.atleast_2d(np.asarray(M, float))
-    L = np.atleast_2d(np.asarray(L, float))
+    Lbar = np.atleast_2d(np.asarray(Lbar, float))
     n = M.shape[0]
-    if M.shape != (n, n) or L.shape != (n, n):
-        raise InflowError(f"M and Lbar must be square and alike, got {M.shape} and {L.shape}")
+    if M.shape != (n, n) or Lbar.shape != (n, n):
+        raise InflowError(f"M and Lbar must be square and alike, got {M.shape} and {Lbar.shape}")
     tau = np.zeros((n, n)) if tau is None else np.asarray(tau, float)
     if tau.shape != (n, n) or np.any(tau < 0) or not np.all(np.isfinite(tau)):
         raise InflowError(f"tau must be a ({n}, {n}) array of non-negative delays [s]")
@@ -92,7 +92,7 @@ def mltau_statespace(M, L, tau=None, *, omega, time="azimuth", pade_order=2,
         raise InflowError("M is singular: not a first-order inflow model")
     m_s = M / omega if time == "azimuth" else M      # seconds: (M/Omega) d/dt
     minv = np.linalg.inv(m_s)
-    h = control.ss(-minv @ L, minv, np.eye(n), np.zeros((n, n)))
+    h = control.ss(-minv @ Lbar, minv, np.eye(n), np.zeros((n, n)))
     inputs = inputs or [f"u{j}" for j in range(n)]
     outputs = outputs or [f"y{i}" for i in range(n)]
     if delays not in ("rowwise", "input"):
@@ -273,11 +273,11 @@ class IdentifiedInflow(InflowModel):
 
     # -- constructors -----------------------------------------------------------
     @classmethod
-    def from_matrices(cls, M, L, tau=None, *, omega, rotors=("U", "L"), time="azimuth", loads_ref=None,
+    def from_matrices(cls, M, Lbar, tau=None, *, omega, rotors=("U", "L"), time="azimuth", loads_ref=None,
                       inflow_ref=None, pade_order=2, name="identified M/Lbar/tau", delays="rowwise"):
         """From the ``M, Lbar, tau`` form (see :func:`mltau_statespace`), delays by Padé."""
         rotors = tuple(rotors)
-        sys = mltau_statespace(M, L, tau, omega=omega, time=time, pade_order=pade_order,
+        sys = mltau_statespace(M, Lbar, tau, omega=omega, time=time, pade_order=pade_order,
                                inputs=load_names(rotors), outputs=inflow_names(rotors), name=name,
                                delays=delays)
         return cls(sys, rotors, loads_ref, inflow_ref, name)
@@ -392,7 +392,7 @@ class IdentifiedInflow(InflowModel):
         m = record.matrices
         kw = dict(loads_ref=record.loads_ref, inflow_ref=record.inflow_ref, name=record.name)
         if record.form == "mltau":
-            return cls.from_matrices(m["M"], m["L"], m["tau"], omega=record.omega, rotors=record.rotors,
+            return cls.from_matrices(m["M"], m["Lbar"], m["tau"], omega=record.omega, rotors=record.rotors,
                                      time=record.time, pade_order=pade_order or record.pade_order, **kw)
         if record.form == "fgc":
             return cls.from_fgc(m["F"], m["G"], m["C"], rotors=record.rotors, input_order=record.inputs,
@@ -468,6 +468,6 @@ class IdentifiedInflow(InflowModel):
         if hasattr(model, "F"):
             return cls.from_fgc(model.F, model.G, model.C, rotors=rotors, input_order=model.input_order,
                                 loads_ref=loads_ref, inflow_ref=inflow_ref, name=model.name)
-        return cls.from_matrices(model.M, model.L, model.tau, omega=model.omega, rotors=rotors,
+        return cls.from_matrices(model.M, model.Lbar, model.tau, omega=model.omega, rotors=rotors,
                                  time=model.time, loads_ref=loads_ref, inflow_ref=inflow_ref,
                                  pade_order=pade_order, name=model.name)

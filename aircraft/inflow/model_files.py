@@ -40,6 +40,12 @@ def _table(rows):
                       all(v is None or isinstance(v, (int, float)) for v in df[c])})
 
 
+# The file schema stores Lbar under "L" (its name before the rename); changing the
+# key would be a schema change, which stales every shipped model's recipe hash.
+_FILE_KEY = {"Lbar": "L"}
+_MEMORY_KEY = {v: k for k, v in _FILE_KEY.items()}
+
+
 @dataclass
 class ModelRecord:
     """One identified inflow model as stored on disk.
@@ -52,8 +58,9 @@ class ModelRecord:
     omega : float
         Rotor speed [rad/s].
     matrices : dict of ndarray
-        ``M, L, tau`` (``M`` per d/dpsi, ``tau`` [s]); or ``F, G, C`` [1/s]; or
-        ``A, B, C`` [1/s] of a ready state-space model.
+        ``M, Lbar, tau`` (``M`` per d/dpsi, ``tau`` [s]); or ``F, G, C`` [1/s]; or
+        ``A, B, C`` [1/s] of a ready state-space model. (On disk ``Lbar`` is stored
+        under the key ``"L"``, which the file schema fixed before the rename.)
     inputs, outputs : list of str
         Canonical signal names (loads then flap rates; inflow).
     loads_ref, inflow_ref : ndarray
@@ -92,7 +99,7 @@ class ModelRecord:
     def __post_init__(self):
         if self.form not in ("mltau", "fgc", "statespace"):
             raise ModelFileError(f"{self.name}: unknown model form {self.form!r}")
-        need = {"mltau": ("M", "L", "tau"), "fgc": ("F", "G", "C"), "statespace": ("A", "B", "C")}[self.form]
+        need = {"mltau": ("M", "Lbar", "tau"), "fgc": ("F", "G", "C"), "statespace": ("A", "B", "C")}[self.form]
         missing = [k for k in need if k not in self.matrices]
         if missing:
             raise ModelFileError(f"{self.name}: form {self.form!r} needs matrices {missing}")
@@ -112,7 +119,7 @@ class ModelRecord:
             "schema": SCHEMA, "name": self.name, "description": self.description, "form": self.form,
             "rotors": list(self.rotors), "omega_rad_s": self.omega, "time": self.time, "frame": self.frame,
             "pade_order": self.pade_order, "inputs": self.inputs, "outputs": self.outputs,
-            "matrices": self.matrices,
+            "matrices": {_FILE_KEY.get(k, k): v for k, v in self.matrices.items()},
             "trim": {"loads_ref": self.loads_ref, "inflow_ref": self.inflow_ref, "outputs": self.trim_outputs},
             "J_ave": self.J_ave, "cost_table": self.cost_table, "parameters": self.parameters,
             "verification": self.verification, "settings": self.settings,
@@ -132,7 +139,8 @@ class ModelRecord:
         try:
             trim = d["trim"]
             return cls(name=d["name"], form=d["form"], rotors=tuple(d["rotors"]), omega=float(d["omega_rad_s"]),
-                       matrices={k: _finite_matrix(source, k, v) for k, v in d["matrices"].items()},
+                       matrices={_MEMORY_KEY.get(k, k): _finite_matrix(source, k, v)
+                                 for k, v in d["matrices"].items()},
                        inputs=list(d["inputs"]), outputs=list(d["outputs"]),
                        loads_ref=np.array(trim["loads_ref"], float), inflow_ref=np.array(trim["inflow_ref"], float),
                        frame=d.get("frame", "rotor"), time=d.get("time", "azimuth"),

@@ -83,7 +83,7 @@ class PublishedInflowModel:
 
     Attributes
     ----------
-    M, L : ndarray
+    M, Lbar : ndarray
         Apparent mass and ``Lbar = [L]^-1`` (``M`` dimensionless if ``time`` is
         "azimuth", [s] if "seconds").
     tau : ndarray
@@ -99,7 +99,7 @@ class PublishedInflowModel:
     rotors: tuple
     omega: float
     M: np.ndarray
-    L: np.ndarray
+    Lbar: np.ndarray
     tau: np.ndarray
     condition: dict = field(default_factory=dict)
     time: str = "azimuth"
@@ -220,7 +220,7 @@ def in_rotor_frames(model, directions=None):
                        G=convert_frames(model.G, states, cols, directions),
                        C=convert_frames(model.C, lam, states, directions), notes=note, frame="rotor")
     return replace(model, M=convert_frames(model.M, loads, lam, directions),
-                   L=convert_frames(model.L, loads, lam, directions), notes=note, frame="rotor")
+                   Lbar=convert_frames(model.Lbar, loads, lam, directions), notes=note, frame="rotor")
 
 
 # --- Tables 4.1-4.2: UH-60-like single rotor in hover (M/Omega_0 [s], Lbar, tau [s]) ----------
@@ -250,7 +250,7 @@ def tables_4_1_4_2():
 def _hover_single(name, m11, l11, t11, m22, l22, t22, notes=""):
     return PublishedInflowModel(
         name=name, source="dissertation Tables 4.1-4.2 (§4.3)", rotors=("",), omega=_UH60_OMEGA,
-        M=np.diag([m11, m22, m22]), L=np.diag([l11, l22, l22]), tau=np.diag([t11, t22, t22]),
+        M=np.diag([m11, m22, m22]), Lbar=np.diag([l11, l22, l22]), tau=np.diag([t11, t22, t22]),
         condition={"flight": "hover", "CT": _UH60_CT, "mu": 0.0, "omega_rad_s": _UH60_OMEGA},
         time="seconds", notes=notes + " M22 = M33, Lbar22 = Lbar33, tau22 = tau33 by symmetry (§4.3.1.2).")
 
@@ -267,7 +267,7 @@ UH60_MU01_MFW = PublishedInflowModel(
     name="UH-60 mu = 0.1, identified from MFW (Eq. 4.7)", source="dissertation Eq. (4.7), §4.4.1.1",
     rotors=("",), omega=_UH60_OMEGA,
     M=np.diag([0.0394, -0.00603, -0.00603]),
-    L=np.array([[0.234, 0, 0.038], [0, -0.0685, 0], [0.0521, 0, -0.0873]]),
+    Lbar=np.array([[0.234, 0, 0.038], [0, -0.0685, 0], [0.0521, 0, -0.0873]]),
     tau=np.array([[0.047, 0, 0.071], [0, 0.043, 0], [0.20, 0, 0.039]]),
     condition={"flight": "forward", "mu": 0.1, "CT": _UH60_CT, "omega_rad_s": _UH60_OMEGA},
     time="seconds", notes="M read as M/Omega [s]; delay matrix printed garbled; C_T nominal (not printed).")
@@ -276,7 +276,7 @@ UH60_MU02_MFW = PublishedInflowModel(
     name="UH-60 mu = 0.2, identified from MFW (Eq. 4.8)", source="dissertation Eq. (4.8), §4.4.1.2",
     rotors=("",), omega=_UH60_OMEGA,
     M=np.diag([0.0254, -0.00323, -0.00323]),
-    L=np.array([[0.345, 0, 0.047], [0, -0.09, 0], [0.121, 0, -0.129]]),
+    Lbar=np.array([[0.345, 0, 0.047], [0, -0.09, 0], [0.121, 0, -0.129]]),
     tau=np.array([[0.062, 0, 0.00], [0, 0.057, 0], [0.15, 0, 0.05]]),
     condition={"flight": "forward", "mu": 0.2, "CT": _UH60_CT, "omega_rad_s": _UH60_OMEGA},
     time="seconds", notes="M read as M/Omega [s]; tau13 printed 0.00; C_T nominal (not printed).")
@@ -293,7 +293,7 @@ COAXIAL_HOVER_6STATE = PublishedInflowModel(
         [0.674, 0, 0, 1.0563, 0, 0],
         [0, 0.3349, 0, 0, -0.27, 0],
         [0, 0, 0.3349, 0, 0, -0.27]]),
-    L=np.array([
+    Lbar=np.array([
         [0.4418, 0, 0, -0.182, 0, 0],
         [0, -0.0453, 0, 0, -0.01089, 0],
         [0, 0, -0.0453, 0, 0, -0.01089],

@@ -39,7 +39,7 @@ SCHEDULE_SCHEMA = "rotorwake-inflow-schedule-1"
 #: 12 significant digits (e.g. read back from a CSV) still counts as on the node.
 _REL_TOL = 1e-9
 
-_FIELDS = ("M", "L", "tau", "loads_ref", "inflow_ref")
+_FIELDS = ("M", "Lbar", "tau", "loads_ref", "inflow_ref")
 
 
 def _axis(values, name):
@@ -79,7 +79,7 @@ class ScheduledInflow(InflowModel):
     cts : sequence of float
         System thrust coefficients ``C_T = C_T,U + C_T,L`` of the grid nodes [-]
         (strictly increasing).
-    M, L, tau : array_like, shape (n_spacings, n_cts, n, n)
+    M, Lbar, tau : array_like, shape (n_spacings, n_cts, n, n)
         Apparent mass (multiplying d/dpsi, dimensionless, as Eq. 5.3), ``Lbar`` [-]
         and delays [s] at each node, in our rotor frames.
     omega : float
@@ -106,7 +106,7 @@ class ScheduledInflow(InflowModel):
         an interpolated model that is unstable (from :class:`IdentifiedInflow`).
     """
 
-    def __init__(self, spacings, cts, M, L, tau, *, omega, loads_ref, inflow_ref, spacing, ct,
+    def __init__(self, spacings, cts, M, Lbar, tau, *, omega, loads_ref, inflow_ref, spacing, ct,
                  rotors=("U", "L"), pade_order=2, name="scheduled inflow", trusted=None):
         self.spacings = _axis(spacings, "spacings")
         self.cts = _axis(cts, "cts")
@@ -114,7 +114,7 @@ class ScheduledInflow(InflowModel):
         n = 3 * len(self.rotors)
         shape = (self.spacings.size, self.cts.size)
         self._grid = {}
-        for key, value, tail in (("M", M, (n, n)), ("L", L, (n, n)), ("tau", tau, (n, n)),
+        for key, value, tail in (("M", M, (n, n)), ("Lbar", Lbar, (n, n)), ("tau", tau, (n, n)),
                                  ("loads_ref", loads_ref, (n,)), ("inflow_ref", inflow_ref, (n,))):
             arr = np.asarray(value, float)
             if arr.shape != shape + tail:
@@ -136,13 +136,13 @@ class ScheduledInflow(InflowModel):
         self.spacing, self.ct = float(spacing), float(ct)
         self.name = f"{self.base_name} (h/R {self.spacing:g}, C_T {self.ct:g})"
         self.model = IdentifiedInflow.from_matrices(
-            mats["M"], mats["L"], mats["tau"], omega=self.omega, rotors=self.rotors, time="azimuth",
+            mats["M"], mats["Lbar"], mats["tau"], omega=self.omega, rotors=self.rotors, time="azimuth",
             loads_ref=mats["loads_ref"], inflow_ref=mats["inflow_ref"], pade_order=self.pade_order,
             name=self.name)
 
     # -- the schedule --------------------------------------------------------------
     def matrices(self, spacing, ct):
-        """The interpolated ``M, L, tau, loads_ref, inflow_ref`` at a point of the grid.
+        """The interpolated ``M, Lbar, tau, loads_ref, inflow_ref`` at a point of the grid.
 
         Parameters
         ----------
@@ -154,7 +154,7 @@ class ScheduledInflow(InflowModel):
         Returns
         -------
         dict of numpy.ndarray
-            Keys ``"M", "L", "tau", "loads_ref", "inflow_ref"``.
+            Keys ``"M", "Lbar", "tau", "loads_ref", "inflow_ref"``.
 
         Raises
         ------

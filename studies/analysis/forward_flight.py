@@ -25,8 +25,8 @@ def _published_for(mu):
 
 
 _ROWS = (("M11/Omega [s]", "M", (0, 0)), ("M22/Omega [s]", "M", (1, 1)), ("M33/Omega [s]", "M", (2, 2)),
-         ("Lbar11", "L", (0, 0)), ("Lbar13", "L", (0, 2)), ("Lbar22", "L", (1, 1)), ("Lbar31", "L", (2, 0)),
-         ("Lbar33", "L", (2, 2)), ("tau11 [s]", "tau", (0, 0)), ("tau13 [s]", "tau", (0, 2)),
+         ("Lbar11", "Lbar", (0, 0)), ("Lbar13", "Lbar", (0, 2)), ("Lbar22", "Lbar", (1, 1)), ("Lbar31", "Lbar", (2, 0)),
+         ("Lbar33", "Lbar", (2, 2)), ("tau11 [s]", "tau", (0, 0)), ("tau13 [s]", "tau", (0, 2)),
          ("tau22 [s]", "tau", (1, 1)), ("tau31 [s]", "tau", (2, 0)), ("tau33 [s]", "tau", (2, 2)))
 
 
@@ -65,16 +65,16 @@ def forward_comparison_table(models, *, alpha=0.0):
         pub = _published_for(mu)
         for label, mat, (i, j) in _ROWS:
             scale = 1.0 / omega if mat == "M" else 1.0
-            pname = f"{ {'M': 'm', 'L': 'l', 'tau': 't'}[mat]}{i + 1}{j + 1}".replace(" ", "")
+            pname = f"{ {'M': 'm', 'Lbar': 'l', 'tau': 't'}[mat]}{i + 1}{j + 1}".replace(" ", "")
             if pname in p.index:
                 cr, ins, status = (p.loc[pname, "cramer_rao_pct"], p.loc[pname, "insensitivity_pct"],
                                    p.loc[pname, "status"])
             else:
                 cr, ins, status = np.nan, np.nan, "tied" if np.ravel(mats[mat])[3 * i + j] != 0 else "not in model"
-            pp = {"M": pp_m[i, j] / omega, "L": pp_l[i, j], "tau": 0.0}[mat]
+            pp = {"M": pp_m[i, j] / omega, "Lbar": pp_l[i, j], "tau": 0.0}[mat]
             ref = np.nan
             if pub is not None:
-                ref = {"M": pub.M_seconds, "L": pub.L, "tau": pub.tau}[mat][i, j]
+                ref = {"M": pub.M_seconds, "Lbar": pub.Lbar, "tau": pub.tau}[mat][i, j]
             rows.append({"mu": mu, "coefficient": label, "ours": float(mats[mat][i, j]) * scale,
                          "cramer_rao_pct": cr, "insensitivity_pct": ins, "status": status,
                          "pitt_peters": float(pp), "dissertation": float(ref)})
@@ -115,7 +115,7 @@ def forward_bode_overlay(model, mu, *, alpha=0.0, pairs=KEY_RESPONSES, fig=None)
     sources.append((pp.to_frd(w), "linearised Pitt-Peters"))
     pub = _published_for(mu)
     if pub is not None:
-        ref = MLTauStructure(pub.M * pub.omega if pub.time == "seconds" else pub.M, pub.L, pub.tau,
+        ref = MLTauStructure(pub.M * pub.omega if pub.time == "seconds" else pub.M, pub.Lbar, pub.tau,
                              inputs=names[0], outputs=names[1], initial={}, omega=pub.omega)
         sources.append((ref.to_frd(w), f"dissertation Eq. {'4.7' if round(mu, 6) == 0.1 else '4.8'} (printed)"))
     return bode_with_coherence(sources, list(pairs), fig=fig)

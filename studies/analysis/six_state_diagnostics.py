@@ -78,7 +78,7 @@ class Coaxial6StateFeedthrough(Coaxial6State):
         from flightid.feedthrough import MLTauFeedthroughStructure
         # Eq. 5.3's own patterns (ties and frame signs included), D tied as M is
         base = super().build({k: v for k, v in initial.items() if not k.startswith("d")}, omega)
-        m, lb, tau = (_entries(base._patterns[k]) for k in ("M", "L", "tau"))
+        m, lb, tau = (_entries(base._patterns[k]) for k in ("M", "Lbar", "tau"))
         return MLTauFeedthroughStructure(m, lb, tau, _entries(base._patterns["M"], "d"), inputs=self.inputs,
                                          outputs=self.outputs, initial=dict(initial), fixed=fixed, omega=omega)
 

@@ -123,7 +123,7 @@ class Coaxial6StateVariant(Coaxial6StateFeedthrough):
                                        omega, fixed)
         from flightid.feedthrough import MLTauFeedthroughStructure
         base = Coaxial6State.build(self, {k: v for k, v in values.items() if not k.startswith("d")}, omega)
-        m, lb, tau = (_entries(base._patterns[k]) for k in ("M", "L", "tau"))
+        m, lb, tau = (_entries(base._patterns[k]) for k in ("M", "Lbar", "tau"))
         d = [[0 if (isinstance(e, str) and e.lstrip("-") not in self.feedthrough) else e for e in row]
              for row in _entries(base._patterns["M"], "d")]
         init = {**values, **{n: float(values.get(n, 0.0)) for n in self.feedthrough}}

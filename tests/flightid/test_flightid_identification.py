@@ -188,12 +188,12 @@ def test_verify_gives_small_tic_on_the_truth_model():
     # every load gets a doublet (different sizes, some delayed) so every inflow output moves
     loads = np.array([a * np.interp(t - lag, t, d, left=0.0)
                       for a, lag in [(1, 0), (0.8, 0.3), (-0.6, 0.6), (-0.5, 0.1), (0.7, 0.9), (0.4, 1.2)]])
-    lam = simulate_mltau(P.M, P.L, P.tau, P.omega, t, loads)
+    lam = simulate_mltau(P.M, P.Lbar, P.tau, P.omega, t, loads)
     result = verify(structure, t, loads, lam)
     assert result.metrics.TIC.max() < 0.1
     assert list(result.metrics.output) == P.output_names
     # a wrong model is caught: doubling Lbar halves the steady gains
-    wrong = structure.with_values({"l11": 2 * P.L[0, 0], "l44": 2 * P.L[3, 3]})
+    wrong = structure.with_values({"l11": 2 * P.Lbar[0, 0], "l44": 2 * P.Lbar[3, 3]})
     assert verify(wrong, t, loads, lam).metrics.TIC.iloc[0] > 0.1
 
 

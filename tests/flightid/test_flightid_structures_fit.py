@@ -27,7 +27,7 @@ def test_azimuth_time_conversion_happens_once_and_matches_seconds_model():
     # an identity, so the two responses must agree to rounding.
     az = _two_state_mltau()
     m = az.matrices()
-    sec = MLTauStructure(m["M"] / OMEGA, m["L"], m["tau"], inputs=az.inputs, outputs=az.outputs,
+    sec = MLTauStructure(m["M"] / OMEGA, m["Lbar"], m["tau"], inputs=az.inputs, outputs=az.outputs,
                          initial={})
     w = np.geomspace(0.1, 50, 30)
     np.testing.assert_allclose(az.frequency_response(w), sec.frequency_response(w), rtol=1e-12)

@@ -156,7 +156,7 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
         a 500 rad/s undamped pair; :meth:`extra_starts` offers the start that works."""
         init = dict(super().initial_values(lam_over_c, n_points, coherence_min))
         init.update({f"{p}{ij}": 0.0 for p in "ml" for ij in ("23", "56", "26", "53")})
-        return self._project(init, {"L": _low_frequency_inverse(lam_over_c, n_points,
+        return self._project(init, {"Lbar": _low_frequency_inverse(lam_over_c, n_points,
                                                                 coherence_min=coherence_min)})
 
     def equation_error_start(self, lam_over_c, omega, band):
@@ -194,7 +194,7 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
             return None
         x = w[sel] / float(omega)
         return self._project(self.initial_values(lam_over_c),
-                             {"L": h_inv.real.mean(axis=0),
+                             {"Lbar": h_inv.real.mean(axis=0),
                               "M": np.tensordot(x, h_inv.imag, axes=(0, 0)) / float(x @ x)})
 
     def extra_starts(self, lam_over_c, omega):
@@ -213,7 +213,7 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
         return out
 
     def _project(self, init, matrices):
-        """``init`` with each parameter of ``matrices`` ("M", "L") set to the mean, with
+        """``init`` with each parameter of ``matrices`` ("M", "Lbar") set to the mean, with
         the ties' signs, of the entries it is tied to."""
         out = dict(init)
         built = self.build(out, 1.0)

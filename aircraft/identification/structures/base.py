@@ -233,7 +233,7 @@ class InflowStructure:
         mats = self.build(values, omega).matrices()
         name = name or f"identified {self.key}"
         if self.form == "mltau":
-            return IdentifiedInflow.from_matrices(mats["M"], mats["L"], mats["tau"], omega=omega,
+            return IdentifiedInflow.from_matrices(mats["M"], mats["Lbar"], mats["tau"], omega=omega,
                                                   rotors=self.rotors, time="azimuth", loads_ref=loads_ref,
                                                   inflow_ref=inflow_ref, pade_order=pade_order, name=name)
         c = self.build(values, omega).C

@@ -159,5 +159,5 @@ class SingleRotorForward(InflowStructure):
         if tuple(model.rotors) != ("",):
             raise ValueError(f"{model.name} is not a single-rotor model (rotors {model.rotors})")
         m = model.M * model.omega if model.time == "seconds" else model.M
-        mats = {"m": m, "l": model.L, "t": model.tau}
+        mats = {"m": m, "l": model.Lbar, "t": model.tau}
         return {n: float(mats[n[0]][int(n[1]) - 1, int(n[2]) - 1]) for n in self.parameter_names()}

@@ -64,8 +64,8 @@ class SingleRotor3State(InflowStructure):
 
     def published_values(self, model):
         m = model.M * model.omega if model.time == "seconds" else model.M   # to azimuth time
-        return {"m11": float(m[0, 0]), "m22": float(m[1, 1]), "l11": float(model.L[0, 0]),
-                "l22": float(model.L[1, 1]), "t11": float(model.tau[0, 0]), "t22": float(model.tau[1, 1])}
+        return {"m11": float(m[0, 0]), "m22": float(m[1, 1]), "l11": float(model.Lbar[0, 0]),
+                "l22": float(model.Lbar[1, 1]), "t11": float(model.tau[0, 0]), "t22": float(model.tau[1, 1])}
 
 #: The 24 free parameters of §5.3 (rows 3 and 6 repeat 2 and 5 by ties).
 _COAX6_FREE = [(1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)]
@@ -145,7 +145,7 @@ class Coaxial6State(InflowStructure):
         if self.frame == "rotor" and model.frame == "printed":
             model = in_rotor_frames(model)
         vals = {}
-        for name, mat in (("m", model.M), ("l", model.L), ("t", model.tau)):
+        for name, mat in (("m", model.M), ("l", model.Lbar), ("t", model.tau)):
             for i, j in _COAX6_FREE:
                 vals[f"{name}{i}{j}"] = float(mat[i - 1, j - 1])
         return vals

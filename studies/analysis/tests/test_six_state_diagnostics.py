@@ -23,7 +23,7 @@ def test_feedthrough_ties_are_invariant_under_a_turn_of_the_hover_wake(frame, lo
     t = np.eye(6)
     t[1:3, 1:3] = _rotation(0.8)
     t[4:6, 4:6] = _rotation(lower_sign * 0.8)
-    for key in ("M", "L", "D"):
+    for key in ("M", "Lbar", "D"):
         np.testing.assert_allclose(t @ mats[key] @ np.linalg.inv(t), mats[key], atol=1e-12)
 
 
@@ -50,18 +50,16 @@ def test_six_state_diagnostics_pinned_mass_row_recovers_eq_5_3_on_its_own_data()
     diagonal held at its true value and every other parameter started 10 % off, the
     fourth row must land on the truth (J ~ 0, Lbar within 0.1 %). The pinned
     parameters must be reported as not free."""
-    import json
-    from pathlib import Path
     from aircraft.identification.structures import Coaxial6State
+    from aircraft.inflow.model_files import load_record
     from studies.analysis.six_state_diagnostics import six_state_diagnostics
-    rec = json.loads((Path(__file__).resolve().parents[3] / "aircraft/data/models/published_eq5_3.json")
-                     .read_text())
-    mats = {k: np.array(v) for k, v in rec["matrices"].items()}
+    rec = load_record("published_eq5_3")
+    mats = rec.matrices
     idx = {"11": (0, 0), "14": (0, 3), "22": (1, 1), "25": (1, 4), "41": (3, 0), "44": (3, 3),
            "52": (4, 1), "55": (4, 4)}
-    truth = {f"{p}{k}": float(mats[key][i, j]) for p, key in (("m", "M"), ("l", "L"), ("t", "tau"))
+    truth = {f"{p}{k}": float(mats[key][i, j]) for p, key in (("m", "M"), ("l", "Lbar"), ("t", "tau"))
              for k, (i, j) in idx.items()}
-    omega = float(rec["omega_rad_s"])
+    omega = float(rec.omega)
     st = Coaxial6State()
     w = np.geomspace(0.7, 30.0, 60)
     h = st.build(truth, omega).frequency_response(w)

@@ -31,7 +31,7 @@ def _nested_12state(six):
     st6, st12 = Coaxial6State(), Coaxial12State(delays=True)
     mats = st6.build(six, OMEGA).matrices()
     minv = np.linalg.inv(mats["M"])
-    f_near, g_near = -minv @ mats["L"], minv
+    f_near, g_near = -minv @ mats["Lbar"], minv
     near, load_cols = (1, 3, 5, 7, 9, 11), (1, 2, 4, 6, 7, 9)
     vals = {n: 0.0 for n in st12.parameter_names()}
     for name in vals:

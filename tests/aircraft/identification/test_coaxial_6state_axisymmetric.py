@@ -62,7 +62,7 @@ def _exact_data(values=TRUTH):
 def test_structure_matrices_are_the_hand_written_ones():
     mats = Coaxial6StateAxisymmetric().build(TRUTH, OMEGA).matrices()
     np.testing.assert_array_equal(mats["M"], _by_hand(TRUTH, "m"))
-    np.testing.assert_array_equal(mats["L"], _by_hand(TRUTH, "l"))
+    np.testing.assert_array_equal(mats["Lbar"], _by_hand(TRUTH, "l"))
     np.testing.assert_array_equal(mats["tau"], _delays(TRUTH))
 
 

@@ -33,7 +33,7 @@ def _exact_data():
     st = Coaxial6State()
     mats = st.build(TRUTH, OMEGA).matrices()
     s = 1j * W / OMEGA
-    h = np.moveaxis(np.linalg.inv(mats["M"][None] * s[:, None, None] + mats["L"][None]), 0, -1)
+    h = np.moveaxis(np.linalg.inv(mats["M"][None] * s[:, None, None] + mats["Lbar"][None]), 0, -1)
     h = h * np.exp(-1j * W[None, None, :] * mats["tau"][:, :, None])
     return st, MeasuredResponse(h, W, np.ones(h.shape), st.inputs, st.outputs)
 
@@ -80,7 +80,7 @@ def test_equation_error_masses_are_exact_without_delays():
     truth = {k: (0.0 if k.startswith("t") else v) for k, v in TRUTH.items()}
     mats = st.build(truth, OMEGA).matrices()
     s = 1j * W / OMEGA
-    h = np.moveaxis(np.linalg.inv(mats["M"][None] * s[:, None, None] + mats["L"][None]), 0, -1)
+    h = np.moveaxis(np.linalg.inv(mats["M"][None] * s[:, None, None] + mats["Lbar"][None]), 0, -1)
     data = MeasuredResponse(h, W, np.ones(h.shape), st.inputs, st.outputs)
     np.testing.assert_allclose(equation_error_masses(data, OMEGA, st.outputs, st.inputs), mats["M"],
                                atol=1e-10)

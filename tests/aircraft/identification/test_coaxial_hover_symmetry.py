@@ -42,7 +42,7 @@ def test_ties_are_invariant_under_a_turn_of_the_hover_wake(frame, lower_sign):
     mats = _random_matrices(frame)
     for psi in (0.3, 1.1, 2.5):
         t = _turn(psi, lower_sign)
-        for key in ("M", "L"):
+        for key in ("M", "Lbar"):
             np.testing.assert_allclose(t @ mats[key] @ np.linalg.inv(t), mats[key], atol=1e-12)
 
 
@@ -51,7 +51,7 @@ def test_the_other_frame_convention_is_not_invariant(frame, lower_sign):
     # the negative control: each frame's ties under the other frame's turn of the lower rotor
     mats = _random_matrices(frame)
     t = _turn(0.7, lower_sign)
-    assert np.abs(t @ mats["L"] @ np.linalg.inv(t) - mats["L"]).max() > 1e-2
+    assert np.abs(t @ mats["Lbar"] @ np.linalg.inv(t) - mats["Lbar"]).max() > 1e-2
 
 
 def _turn_labels(labels, psi, lower_sign):

@@ -31,10 +31,10 @@ CTS = (0.0075, 0.0096)
 rng = np.random.default_rng(14)
 # matrices linear in (h/R, C_T): base (Eq. 5.3 in our frames) + slopes. The slopes keep
 # the sparsity of Eq. 5.3 and are small enough that every point of the grid stays stable.
-MASK = {"M": EQ53.M != 0, "L": EQ53.L != 0, "tau": EQ53.tau != 0}
+MASK = {"M": EQ53.M != 0, "Lbar": EQ53.Lbar != 0, "tau": EQ53.tau != 0}
 SLOPES = {k: (rng.normal(size=(6, 6)) * MASK[k] * scale_s, rng.normal(size=(6, 6)) * MASK[k] * scale_c)
-          for k, scale_s, scale_c in (("M", 0.3, 8.0), ("L", 0.05, 2.0), ("tau", 0.02, 1.0))}
-BASE = {"M": EQ53.M, "L": EQ53.L, "tau": EQ53.tau}
+          for k, scale_s, scale_c in (("M", 0.3, 8.0), ("Lbar", 0.05, 2.0), ("tau", 0.02, 1.0))}
+BASE = {"M": EQ53.M, "Lbar": EQ53.Lbar, "tau": EQ53.tau}
 
 
 def _linear(key, s, c):
@@ -51,11 +51,11 @@ def _refs(s, c):
 
 def _grid(fun_tau=_linear):
     shape = (len(SPACINGS), len(CTS))
-    g = {k: np.zeros(shape + (6, 6)) for k in ("M", "L", "tau")}
+    g = {k: np.zeros(shape + (6, 6)) for k in ("M", "Lbar", "tau")}
     g["loads_ref"], g["inflow_ref"] = np.zeros(shape + (6,)), np.zeros(shape + (6,))
     for i, s in enumerate(SPACINGS):
         for j, c in enumerate(CTS):
-            for k in ("M", "L"):
+            for k in ("M", "Lbar"):
                 g[k][i, j] = _linear(k, s, c)
             g["tau"][i, j] = fun_tau("tau", s, c)
             g["loads_ref"][i, j], g["inflow_ref"][i, j] = _refs(s, c)
@@ -97,7 +97,7 @@ def test_schedule_reproduces_matrices_linear_in_spacing_and_thrust(s, c):
     loads, _ = _refs(s, c)
     # bilinear interpolation is exact for functions linear in each variable: only
     # round-off (1e-12 of entries of order 1) separates it from the closed form
-    for k in ("M", "L", "tau"):
+    for k in ("M", "Lbar", "tau"):
         np.testing.assert_allclose(mats[k], _linear(k, s, c), rtol=0, atol=1e-12)
     np.testing.assert_allclose(mats["loads_ref"], loads, rtol=0, atol=1e-15)
 
@@ -105,7 +105,7 @@ def test_schedule_reproduces_matrices_linear_in_spacing_and_thrust(s, c):
 def test_scheduled_model_is_the_identified_model_of_the_interpolated_matrices():
     s, c = 0.17, 0.0088
     model = _schedule(s, c)
-    direct = IdentifiedInflow.from_matrices(_linear("M", s, c), _linear("L", s, c), _linear("tau", s, c),
+    direct = IdentifiedInflow.from_matrices(_linear("M", s, c), _linear("Lbar", s, c), _linear("tau", s, c),
                                             omega=OMEGA, rotors=("U", "L"), loads_ref=_refs(s, c)[0],
                                             inflow_ref=model.inflow_ref)
     # same realisation path (from_matrices, Padé 2, minreal): equal DC gains and poles
@@ -120,7 +120,7 @@ def test_scheduled_model_is_the_identified_model_of_the_interpolated_matrices():
     dloads = np.array([1e-4, 0, 0, 0, 0, 0])
     x = model.steady_state(model.loads_ref + dloads, None)
     lam = model.inflow(x, None, None) - model.inflow_ref
-    np.testing.assert_allclose(lam, np.linalg.solve(_linear("L", s, c), dloads), rtol=1e-8, atol=1e-14)
+    np.testing.assert_allclose(lam, np.linalg.solve(_linear("Lbar", s, c), dloads), rtol=1e-8, atol=1e-14)
 
 
 def test_schedule_is_not_linear_where_the_nodes_are_not():
@@ -157,10 +157,10 @@ def test_schedule_refuses_bad_input():
         ScheduledInflow((0.1, 0.1, 0.2, 0.3), CTS, omega=OMEGA, spacing=0.2, ct=0.009, **g)
     with pytest.raises(InflowError, match=r"M must have shape \(4, 2, 6, 6\)"):
         ScheduledInflow(SPACINGS, CTS, omega=OMEGA, spacing=0.2, ct=0.009, **{**g, "M": g["M"][:, :, :3, :3]})
-    bad = g["L"].copy()
+    bad = g["Lbar"].copy()
     bad[1, 1, 0, 0] = np.nan
-    with pytest.raises(InflowError, match="L has non-finite entries"):
-        ScheduledInflow(SPACINGS, CTS, omega=OMEGA, spacing=0.2, ct=0.009, **{**g, "L": bad})
+    with pytest.raises(InflowError, match="Lbar has non-finite entries"):
+        ScheduledInflow(SPACINGS, CTS, omega=OMEGA, spacing=0.2, ct=0.009, **{**g, "Lbar": bad})
     with pytest.raises(InflowError, match="tau must be non-negative"):
         ScheduledInflow(SPACINGS, CTS, omega=OMEGA, spacing=0.2, ct=0.009, **{**g, "tau": -g["tau"] - 1e-3})
     with pytest.raises(InflowError, match="omega must be a positive number"):
@@ -170,9 +170,9 @@ def test_schedule_refuses_bad_input():
     with pytest.raises(InflowError, match="trusted must have shape"):
         ScheduledInflow(SPACINGS, CTS, omega=OMEGA, spacing=0.2, ct=0.009, trusted=[True], **g)
     # an unstable node (Lbar11 < 0: lam0 runs away) poisons the cells around it
-    unstable = g["L"].copy()
+    unstable = g["Lbar"].copy()
     unstable[0, 0, 0, 0] = -1.0
-    model = ScheduledInflow(SPACINGS, CTS, omega=OMEGA, spacing=0.3, ct=0.0096, **{**g, "L": unstable})
+    model = ScheduledInflow(SPACINGS, CTS, omega=OMEGA, spacing=0.3, ct=0.0096, **{**g, "Lbar": unstable})
     with pytest.raises(InflowError, match="unstable"):
         model.at(0.10, 0.0075)
 
@@ -181,7 +181,7 @@ def test_schedule_file_round_trip(tmp_path):
     model = _schedule(0.22, 0.0081)
     path = model.save(tmp_path / "schedule.json")
     back = ScheduledInflow.from_file(path, 0.22, 0.0081)
-    for k in ("M", "L", "tau", "loads_ref", "inflow_ref"):
+    for k in ("M", "Lbar", "tau", "loads_ref", "inflow_ref"):
         np.testing.assert_array_equal(back.matrices(0.22, 0.0081)[k], model.matrices(0.22, 0.0081)[k])
     assert back.name == model.name and back.n_states == model.n_states
     assert list(back.to_pandas().columns[:3]) == ["spacing", "ct", "trusted"] and len(back.to_pandas()) == 8
@@ -212,7 +212,7 @@ def test_the_aircraft_loads_and_trims_with_the_scheduled_model():
 def _fake_model(s, c, trusted=True):
     """What DesignSpaceResult reads of an IdentifiedModel, built from the linear matrices."""
     struct = Coaxial6State("rotor")
-    m, l, t = _linear("M", s, c), _linear("L", s, c), _linear("tau", s, c)
+    m, l, t = _linear("M", s, c), _linear("Lbar", s, c), _linear("tau", s, c)
     values = {}
     for name, mat in (("m", m), ("l", l), ("t", t)):
         for i, j in ((1, 1), (2, 2), (1, 4), (2, 5), (4, 1), (5, 2), (4, 4), (5, 5)):
@@ -238,7 +238,7 @@ def test_result_table_plot_and_schedule():
     table = res.to_pandas()
     assert len(table) == 8 * len(KEY_PARAMETERS)
     row = table[(table.spacing == 0.2) & (table.ct == 0.0075) & (table.parameter == "l41")].iloc[0]
-    assert row.value == pytest.approx(_linear("L", 0.2, 0.0075)[3, 0], rel=1e-12)
+    assert row.value == pytest.approx(_linear("Lbar", 0.2, 0.0075)[3, 0], rel=1e-12)
     assert {"cramer_rao_pct", "insensitivity_pct", "J_ave", "trusted"} <= set(table.columns)
     assert res.summary_table().trusted.tolist() == [True] * 6 + [False] * 2
     fig = res.plot()
@@ -247,9 +247,9 @@ def test_result_table_plot_and_schedule():
     # (the structure ties row 3 to row 2 and row 6 to row 5: compare with the tied matrices)
     sched = res.schedule(0.25, 0.009)
     tied = _fake_model(0.25, 0.009).fit.structure.matrices()
-    for k in ("M", "L", "tau"):
+    for k in ("M", "Lbar", "tau"):
         np.testing.assert_allclose(sched.matrices(0.25, 0.009)[k], tied[k], rtol=0, atol=1e-12)
-    np.testing.assert_allclose(sched.matrices(0.25, 0.009)["L"][:2, :2], _linear("L", 0.25, 0.009)[:2, :2],
+    np.testing.assert_allclose(sched.matrices(0.25, 0.009)["Lbar"][:2, :2], _linear("Lbar", 0.25, 0.009)[:2, :2],
                                rtol=0, atol=1e-12)
     assert not sched.trusted.all()
     with pytest.raises(DesignSpaceError, match="require_trusted: points not trusted: h/R 0.3, C_T 0.0075"):

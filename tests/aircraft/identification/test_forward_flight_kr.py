@@ -38,19 +38,19 @@ def test_structure_holds_the_printed_forward_models(printed):
     mats = built.matrices()
     # M is printed as M/Omega [s]; the structure holds it per d/dpsi
     np.testing.assert_allclose(mats["M"], printed.M * OMEGA, rtol=1e-12)
-    np.testing.assert_allclose(mats["L"], printed.L, rtol=1e-12)
+    np.testing.assert_allclose(mats["Lbar"], printed.Lbar, rtol=1e-12)
     np.testing.assert_allclose(mats["tau"], printed.tau, rtol=1e-12)
     # frequency response against a direct evaluation of H_ij = [(M/Omega) s + Lbar]^-1_ij e^(-s tau_ij)
     w = np.array([0.5, 3.0, 12.0])
     h = built.frequency_response(w)
     for k, wk in enumerate(w):
         s_ = 1j * wk
-        direct = np.linalg.inv(printed.M * s_ + printed.L) * np.exp(-s_ * printed.tau)
+        direct = np.linalg.inv(printed.M * s_ + printed.Lbar) * np.exp(-s_ * printed.tau)
         np.testing.assert_allclose(h[:, :, k], direct, rtol=1e-10)
     # the aircraft model's quasi-steady gain is Lbar^-1 (Pade delays have unit DC gain)
     import control
     inflow = s.to_inflow(s.published_values(printed), OMEGA)
-    np.testing.assert_allclose(control.dcgain(inflow.system), np.linalg.inv(printed.L), rtol=1e-8, atol=1e-10)
+    np.testing.assert_allclose(control.dcgain(inflow.system), np.linalg.inv(printed.Lbar), rtol=1e-8, atol=1e-10)
 
 
 def test_data_driven_start_is_stable_even_from_noisy_low_frequency_data():
@@ -79,7 +79,7 @@ def test_full_pattern_frees_every_entry():
     assert len(s.parameter_names()) == 27 and s.protected == ("m11", "m22", "m33")
     assert s.spec()["pattern"] == "full"
     vals = s.published_values(UH60_MU01_MFW)
-    np.testing.assert_allclose(s.build(vals, OMEGA).matrices()["L"], UH60_MU01_MFW.L)
+    np.testing.assert_allclose(s.build(vals, OMEGA).matrices()["Lbar"], UH60_MU01_MFW.Lbar)
 
 
 def test_pitt_peters_forward_hover_limit_and_forward_couplings():
@@ -244,7 +244,7 @@ def test_study_runs_end_to_end_on_a_tiny_wake(tmp_path):
     assert {"ours", "cramer_rao_pct", "pitt_peters", "dissertation"} <= set(coef.columns)
     # the dissertation column is the printed Eq. 4.7, passed through (reference data)
     lb11 = coef[(coef.mu == 0.1) & (coef.coefficient == "Lbar11")].iloc[0]
-    assert lb11.dissertation == pytest.approx(UH60_MU01_MFW.L[0, 0])
+    assert lb11.dissertation == pytest.approx(UH60_MU01_MFW.Lbar[0, 0])
     assert lb11.ours > 0 and np.isfinite(lb11.cramer_rao_pct)
     costs = pd.read_csv(out / "cost_table.csv")
     assert "J_ave" in set(costs.output) and np.isfinite(costs.J).all()

@@ -80,7 +80,7 @@ def _q(phi, mirrored):
 
 
 def _dc(model):
-    return np.linalg.inv(model.L)
+    return np.linalg.inv(model.Lbar)
 
 
 def test_loads_rotate_like_inflow_harmonics():
@@ -106,7 +106,7 @@ def test_converted_eq53_flips_only_the_cross_rotor_lateral_couplings():
     c = in_rotor_frames(m)
     flipped = np.argwhere(np.sign(c.M) != np.sign(m.M))
     assert sorted(map(tuple, flipped)) == [(1, 4), (4, 1)]       # m25, m52
-    assert sorted(map(tuple, np.argwhere(np.sign(c.L) != np.sign(m.L)))) == [(1, 4), (4, 1)]
+    assert sorted(map(tuple, np.argwhere(np.sign(c.Lbar) != np.sign(m.Lbar)))) == [(1, 4), (4, 1)]
     np.testing.assert_array_equal(c.tau, m.tau)
     # lam1s_L/CL_U quasi-steady: negative as printed, positive in our frames (our wake
     # measured +12.3 at 1 rad/s); lam1c_L/CM_U keeps its sign

@@ -100,7 +100,7 @@ def test_shipped_single_rotor_gain_against_momentum_theory():
     # dissertation's own MFW model is 14 % off)
     rec = load_record("uh60_hover_3state")
     lam_h = np.sqrt(rec.trim_outputs["CT"] / 2)
-    gain = 1.0 / rec.matrices["L"][0, 0]
+    gain = 1.0 / rec.matrices["Lbar"][0, 0]
     assert abs(gain * 4 * lam_h - 1) < 0.30
     dc = control.dcgain(IdentifiedInflow.from_record(rec).system)
     assert dc[0, 0] == pytest.approx(gain, rel=1e-6)
@@ -113,9 +113,9 @@ def test_shipped_coaxial_lateral_cross_couplings_have_the_signs_of_converted_eq5
     # lower-on-upper coupling lam1s_U/CL_L is not checked: the coarse-wake model gave
     # +1.4 and the default-resolution one -5.3 where converted Eq. 5.3 gives -3.4.
     rec = load_record("coaxial_hover_6state")
-    ours = np.linalg.inv(rec.matrices["L"])
-    conv = np.linalg.inv(in_rotor_frames(COAXIAL_HOVER_6STATE).L)
-    printed = np.linalg.inv(COAXIAL_HOVER_6STATE.L)
+    ours = np.linalg.inv(rec.matrices["Lbar"])
+    conv = np.linalg.inv(in_rotor_frames(COAXIAL_HOVER_6STATE).Lbar)
+    printed = np.linalg.inv(COAXIAL_HOVER_6STATE.Lbar)
     for i, j in ((4, 1), (5, 2)):      # lam1s_L/CL_U, lam1c_L/CM_U
         assert np.sign(ours[i, j]) == np.sign(conv[i, j]), (i, j)
     assert np.sign(ours[4, 1]) != np.sign(printed[4, 1])

@@ -18,10 +18,10 @@ def _exact_delayed_response(M_az, L, tau, omega, w):
 
 def test_pade_realisation_matches_exact_delays_at_low_frequency():
     P = published.COAXIAL_HOVER_6STATE
-    sys = mltau_statespace(P.M, P.L, P.tau, omega=P.omega, pade_order=3)
+    sys = mltau_statespace(P.M, P.Lbar, P.tau, omega=P.omega, pade_order=3)
     w = np.array([0.5, 1.0, 2.0, 5.0])                     # rad/s: the flight-dynamics range
     got = np.moveaxis(np.asarray(sys(1j * w)), -1, 0)
-    want = _exact_delayed_response(P.M, P.L, P.tau, P.omega, w)
+    want = _exact_delayed_response(P.M, P.Lbar, P.tau, P.omega, w)
     # 3rd-order Padé, omega tau <= 0.63: phase error < 1e-4 rad; minreal tolerance 1e-9
     np.testing.assert_allclose(got, want, rtol=0, atol=1e-4 * np.max(np.abs(want)))
     assert sys.nstates < 6 + 3 * np.count_nonzero(P.tau) * 6      # minimal realisation shrank it
@@ -51,7 +51,7 @@ def test_identified_inflow_is_a_perturbation_about_its_trim():
     dC = np.array([1e-4, 0, 0, 0, 0, 2e-5])
     x = model.steady_state(model.loads_ref + dC, ops)
     # steady perturbation = inv(Lbar) dC, computed independently with numpy
-    np.testing.assert_allclose(model.inflow(x, None, ops) - model.inflow_ref, np.linalg.solve(P.L, dC),
+    np.testing.assert_allclose(model.inflow(x, None, ops) - model.inflow_ref, np.linalg.solve(P.Lbar, dC),
                                rtol=1e-6, atol=1e-12)
     np.testing.assert_allclose(model.derivatives(x, model.loads_ref + dC, ops), 0, atol=1e-12)
 
@@ -70,7 +70,7 @@ def test_fgc_model_with_flap_rates_keeps_printed_columns_by_name():
 
 def test_printed_model_poles_and_eq_6_9_axis_signs():
     for model in published.ALL_MODELS:
-        a = model.F if hasattr(model, "F") else -np.linalg.solve(model.M_seconds, model.L)
+        a = model.F if hasattr(model, "F") else -np.linalg.solve(model.M_seconds, model.Lbar)
         assert np.max(np.linalg.eigvals(a).real) < 0, model.name
     # Eq. 6.9 as printed: lateral and longitudinal on-axis DC gains have opposite signs
     # (a convention slip noted in published.py); Eq. 5.3 has both negative as in Pitt-Peters
@@ -78,7 +78,7 @@ def test_printed_model_poles_and_eq_6_9_axis_signs():
     dc = -P.C @ np.linalg.solve(P.F, P.G)
     assert dc[1, 1] == pytest.approx(-dc[2, 3])
     assert dc[1, 1] > 0
-    inv53 = np.linalg.inv(published.COAXIAL_HOVER_6STATE.L)
+    inv53 = np.linalg.inv(published.COAXIAL_HOVER_6STATE.Lbar)
     assert inv53[1, 1] < 0 and inv53[2, 2] < 0
 
 
@@ -119,20 +119,20 @@ def test_input_delays_of_eq_2_15_versus_rowwise_delays_of_eq_2_16():
     P = published.UH60_MU01_MFW                      # coupled lam0/lam1c in forward flight
     tau = np.diag(np.diag(P.tau))                    # Eq. 2.15 form: one delay per input
     w = np.array([0.5, 2.0, 6.0])                    # rad/s
-    h = [np.linalg.inv(P.M * 1j * wk + P.L) for wk in w]          # M is M/Omega [s] here
+    h = [np.linalg.inv(P.M * 1j * wk + P.Lbar) for wk in w]          # M is M/Omega [s] here
     want_input = np.array([hk * np.exp(-np.diag(tau) * 1j * wk)[None, :] for hk, wk in zip(h, w)])
     want_row = np.array([hk * np.exp(-tau * 1j * wk) for hk, wk in zip(h, w)])
     for mode, want in (("input", want_input), ("rowwise", want_row)):
-        sys = mltau_statespace(P.M, P.L, tau, omega=P.omega, time="seconds", pade_order=3, delays=mode)
+        sys = mltau_statespace(P.M, P.Lbar, tau, omega=P.omega, time="seconds", pade_order=3, delays=mode)
         got = np.moveaxis(np.asarray(sys(1j * w)), -1, 0)
         # 3rd-order Padé, omega tau <= 0.3: error ~ (omega tau)^7 / 1e4, far below 1e-4 of the peak
         np.testing.assert_allclose(got, want, rtol=0, atol=1e-4 * np.max(np.abs(want)))
     # the two readings differ for a coupled H (the off-diagonal lam1c <- C_T picks up tau11 or not)
     assert np.max(np.abs(want_input - want_row)) > 1e-2 * np.max(np.abs(want_row))
     with pytest.raises(InflowError, match="diagonal tau"):
-        mltau_statespace(P.M, P.L, P.tau, omega=P.omega, time="seconds", delays="input")
+        mltau_statespace(P.M, P.Lbar, P.tau, omega=P.omega, time="seconds", delays="input")
     with pytest.raises(InflowError, match="rowwise"):
-        mltau_statespace(P.M, P.L, P.tau, omega=P.omega, time="seconds", delays="columns")
+        mltau_statespace(P.M, P.Lbar, P.tau, omega=P.omega, time="seconds", delays="columns")
 
 
 def test_without_inputs_disconnects_exactly_those_paths():

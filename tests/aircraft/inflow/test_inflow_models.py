@@ -98,7 +98,7 @@ def test_published_6_state_model_as_identified_inflow():
     model = IdentifiedInflow.from_published(P)
     assert model.input_names == P.input_names and model.output_names == P.output_names
     # steady-state gain equals inv(Lbar) computed independently (Padé delays have unit DC gain)
-    np.testing.assert_allclose(control.dcgain(model.system), np.linalg.inv(P.L), rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(control.dcgain(model.system), np.linalg.inv(P.Lbar), rtol=1e-6, atol=1e-9)
     ops = tuple(RotorOperatingPoint(P.omega) for _ in range(2))
     x = model.steady_state(model.loads_ref, ops)
     np.testing.assert_allclose(model.inflow(x, model.loads_ref, ops), model.inflow_ref, atol=1e-12)
@@ -134,7 +134,7 @@ def test_every_published_model_is_usable_as_identified_inflow(model):
         assert inflow.uses_flap_rates == ("beta1s_dot_U" in model.inputs)
     else:
         # Padé approximants have unit DC gain: the steady state is inv(Lbar); minreal tol 1e-9
-        np.testing.assert_allclose(control.dcgain(inflow.system), np.linalg.inv(model.L), rtol=1e-6, atol=1e-9)
+        np.testing.assert_allclose(control.dcgain(inflow.system), np.linalg.inv(model.Lbar), rtol=1e-6, atol=1e-9)
 
 
 def test_published_model_without_trim_thrust_needs_trim_loads():

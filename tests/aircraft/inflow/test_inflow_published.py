@@ -41,7 +41,7 @@ def test_every_published_model_has_named_signals_and_consistent_shapes():
             assert model.F.shape == (2 * n, 2 * n) and model.G.shape == (2 * n, len(model.input_order)), key
             assert sorted(model.input_order) == sorted(model.input_names), key
         else:
-            assert model.M.shape == model.L.shape == model.tau.shape == (n, n), key
+            assert model.M.shape == model.Lbar.shape == model.tau.shape == (n, n), key
             assert np.all(model.tau >= 0), key
 
 
