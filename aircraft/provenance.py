@@ -36,6 +36,7 @@ one machine is checked on another.
 from __future__ import annotations
 
 import ast
+import dataclasses
 import datetime as _dt
 import hashlib
 import json
@@ -46,7 +47,7 @@ import sys
 from pathlib import Path
 
 __all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "BACKEND_CODE", "ResultsManifestError", "code_version",
-           "settings_hash", "jsonable", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
+           "settings_hash", "jsonable", "HASHED_IF_SET", "identity_repr", "identity_dict", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
            "read_manifest",
            "check_results", "upgrade_manifests", "record_kernel_backend"]
 
@@ -234,6 +235,120 @@ def settings_hash(settings, digits=64):
         raise ValueError(f"digits must be an integer in 1-64, got {digits!r}")
     text = json.dumps(jsonable(settings), sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()[:digits]
+
+
+#: Metadata of a dataclass field added after identities were first hashed (a
+#: configuration or settings field): it enters :func:`identity_repr` and
+#: :func:`identity_dict` only when it differs from its default, so adding such a field
+#: leaves every existing hash -- the shipped models' recipes, cache keys -- unchanged.
+HASHED_IF_SET = {"hashed": "if_set"}
+
+
+def _default_of(f):
+    if f.default is not dataclasses.MISSING:
+        return f.default
+    if f.default_factory is not dataclasses.MISSING:
+        return f.default_factory()
+    return dataclasses.MISSING
+
+
+def _at_default(f, value):
+    """True when field ``f`` is marked :data:`HASHED_IF_SET` and ``value`` is its default."""
+    if f.metadata.get("hashed") != "if_set":
+        return False
+    default = _default_of(f)
+    if default is dataclasses.MISSING:
+        return False
+    try:
+        return bool(value == default) if value is not None or default is None else False
+    except (TypeError, ValueError):          # arrays and the like: compared by their repr
+        return repr(value) == repr(default)
+
+
+def _identity_fields(obj):
+    return [f for f in dataclasses.fields(obj) if f.repr and not _at_default(f, getattr(obj, f.name))]
+
+
+def identity_repr(obj, exclude=()):
+    """``repr(obj)`` of nested dataclasses without the unset :data:`HASHED_IF_SET` fields.
+
+    Equal to the dataclasses' own ``repr`` when no such field is set, so a hash of it
+    does not change when a field with a neutral default is added to a class.
+
+    Parameters
+    ----------
+    obj : object
+        A dataclass instance, or tuples, lists and dicts of them; anything else is
+        written with ``repr``.
+    exclude : iterable of str
+        Fields of ``obj`` itself (not of nested dataclasses) left out.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> @dataclasses.dataclass
+    ... class Rotor:
+    ...     radius: float
+    ...     tip_loss: str = dataclasses.field(default="none", metadata=HASHED_IF_SET)
+    >>> identity_repr(Rotor(8.18)), identity_repr(Rotor(8.18, "prandtl"))
+    ('Rotor(radius=8.18)', "Rotor(radius=8.18, tip_loss='prandtl')")
+    """
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        items = ", ".join(f"{f.name}={identity_repr(getattr(obj, f.name))}" for f in _identity_fields(obj)
+                          if f.name not in exclude)
+        return f"{type(obj).__qualname__}({items})"
+    if isinstance(obj, tuple) and type(obj) is tuple:
+        inner = ", ".join(identity_repr(v) for v in obj)
+        return f"({inner},)" if len(obj) == 1 else f"({inner})"
+    if isinstance(obj, list) and type(obj) is list:
+        return "[" + ", ".join(identity_repr(v) for v in obj) + "]"
+    if isinstance(obj, dict) and type(obj) is dict:
+        return "{" + ", ".join(f"{identity_repr(k)}: {identity_repr(v)}" for k, v in obj.items()) + "}"
+    return repr(obj)
+
+
+def identity_dict(obj):
+    """:func:`dataclasses.asdict` without the unset :data:`HASHED_IF_SET` fields.
+
+    Parameters
+    ----------
+    obj : dataclass instance
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> @dataclasses.dataclass
+    ... class Settings:
+    ...     step: float = 0.1
+    ...     perturbation: float = dataclasses.field(default=0.0, metadata=HASHED_IF_SET)
+    >>> identity_dict(Settings()), identity_dict(Settings(perturbation=1e-7))
+    ({'step': 0.1}, {'step': 0.1, 'perturbation': 1e-07})
+    """
+    if not (dataclasses.is_dataclass(obj) and not isinstance(obj, type)):
+        raise TypeError(f"identity_dict needs a dataclass instance, got {type(obj).__name__}")
+    return _identity_value(obj)
+
+
+def _identity_value(v):
+    import copy
+    if dataclasses.is_dataclass(v) and not isinstance(v, type):
+        return {f.name: _identity_value(getattr(v, f.name)) for f in dataclasses.fields(v)
+                if not _at_default(f, getattr(v, f.name))}
+    if isinstance(v, tuple) and hasattr(v, "_fields"):       # named tuple, as asdict does
+        return type(v)(*[_identity_value(x) for x in v])
+    if isinstance(v, (list, tuple)):
+        return type(v)(_identity_value(x) for x in v)
+    if isinstance(v, dict):
+        return type(v)((_identity_value(k), _identity_value(x)) for k, x in v.items())
+    return copy.deepcopy(v)
 
 
 def jsonable(x):

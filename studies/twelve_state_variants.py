@@ -16,6 +16,8 @@ held swashplate steps, flap-rate ramps, held tilts; cached records) are estimate
 each model is driven by those records' loads and flap rates.
 Writes ``results/twelve_state_variants/``: ``table.csv``, ``parameters.csv`` (every
 variant's parameters, CR and insensitivity), ``cost_tables.csv``, ``variants.png``,
+``reproduction.csv`` (the variants otherwise trusted, identified again on a second
+wake data set started 1e-7 R away: each parameter's shift against its bound),
 ``guideline.csv`` (each variant's parameters outside the bounds, kept or not by the
 guideline's keep rule, with the reason: :func:`aircraft.identification.trust.trust_check`);
 ``steady_gains.csv`` (the wake's G_C, G_R, G_T, long), ``steady_observations.csv`` (each
@@ -68,6 +70,11 @@ def run(out_dir="results/twelve_state_variants", n_jobs=2):
         print(f"{k}: {'trusted' if check.passes else 'NOT trusted: ' + ' | '.join(check.failures)}"
               + "".join(f"\n    {r.parameter}: {r.reason}" for r in check.table.itertuples() if r.verdict == "kept"))
     pd.concat(guideline, ignore_index=True).to_csv(out / "guideline.csv", index=False)
+    reproduced = [m.reproduction.to_pandas().assign(variant=k) for k, m in result.models.items()
+                  if m.reproduction is not None]
+    if reproduced:
+        # the trust rule's last part, run for the variants the rest of it trusts
+        pd.concat(reproduced, ignore_index=True).to_csv(out / "reproduction.csv", index=False)
     steady_gains(result, out, n_jobs=n_jobs)
     print(f"tables and figures in {out}/")
     return table

@@ -38,7 +38,7 @@ def coefficient_table(model):
     for key, name, scale, pp, i, mat in (
             ("m11", "M11/Omega [s]", 1 / omega, 8 / (3 * math.pi) / omega, (0, 0), "M"),
             ("m22", "M22/Omega [s]", 1 / omega, -16 / (45 * math.pi) / omega, (1, 1), "M"),
-            ("l11", "Lbar11", 1.0, 4 * lam_h, (0, 0), "L"), ("l22", "Lbar22", 1.0, -lam_h, (1, 1), "L"),
+            ("l11", "Lbar11", 1.0, 4 * lam_h, (0, 0), "Lbar"), ("l22", "Lbar22", 1.0, -lam_h, (1, 1), "Lbar"),
             ("t11", "tau11 [s]", 1.0, 0.0, (0, 0), "tau"), ("t22", "tau22 [s]", 1.0, 0.0, (1, 1), "tau")):
         rows.append({"coefficient": name, "identified from our wake": val.loc[key, "value"] * scale,
                      "cramer_rao_pct": val.loc[key, "cramer_rao_pct"],
@@ -56,7 +56,7 @@ def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, out_dir="results/wake_i
     id_settings = IdentificationSettings(wake=settings or WakeSettings(), sweep_s=sweep_s)
     model = identify_inflow(uh60_single_rotor(), None, SingleRotor3State(), ct=ct, settings=id_settings,
                             name="UH-60 hover 3-state from our wake", n_jobs=n_jobs, cache_dir=cache_dir,
-                            progress=progress)
+                            progress=progress, reproduce=True)
     table = coefficient_table(model)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -66,6 +66,8 @@ def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, out_dir="results/wake_i
     if model.reduction is not None:
         model.reduction.log.to_csv(out / "reduction_log.csv", index=False)
     model.verification_table.to_csv(out / "verification.csv", index=False)
+    model.trust.to_pandas().to_csv(out / "trust.csv", index=False)
+    model.reproduction.to_pandas().to_csv(out / "reproduction.csv", index=False)
     model.plot().savefig(out / "bode_fit.png", dpi=90)
     model.verification.plot().savefig(out / "verification.png", dpi=90)
     if verbose:
@@ -77,6 +79,10 @@ def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, out_dir="results/wake_i
               f"+{ws.buffer_revolutions:g} revs, {ws.n_elements} elements; trim C_T "
               f"{model.trim.outputs['CT']:.5f}, lam0 {model.trim.outputs['lam0']:.5f} (momentum {lam_h:.5f})")
         print(model.summary())
+        rep = model.reproduction
+        print(f"reproduction on a second wake (start displaced by 1e-7 R): J_ave {rep.J_ave:.2f} -> "
+              f"{rep.J_ave_again:.2f}, {'reproduced' if rep.passes else 'NOT reproduced'}; largest shift "
+              f"{rep.table.shift_in_bounds.max():.2f} x its bound")
         print(table.to_string(index=False, float_format=fmt))
         print(f"quasi-steady lam0/C_T gain 1/Lbar11 = {gain:.3f}; momentum 1/(4 lam_h) = "
               f"{1 / (4 * lam_h):.3f}; ratio {gain * 4 * lam_h:.2f} (dissertation's MFW: "

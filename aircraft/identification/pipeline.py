@@ -19,20 +19,20 @@ from __future__ import annotations
 
 import datetime
 import time
-from dataclasses import asdict, dataclass, field, fields, is_dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from aircraft.inflow.model_files import SCHEMA, ModelRecord
-from aircraft.provenance import settings_hash
+from aircraft.provenance import identity_dict, identity_repr, settings_hash
 from .excitation import ExcitationSettings
-from .trust import trust_check
+from .trust import reproduction_check, trust_check
 from .structures.base import InflowStructure
 from .structures import get_structure
 
 __all__ = ["IdentificationSettings", "IdentifiedModel", "PipelineError", "identify_inflow",
-           "identification_hash", "PIPELINE_VERSION"]
+           "identification_hash", "PIPELINE_VERSION", "REPRODUCTION_PERTURBATION"]
 
 #: Version of the pipeline's numerical recipe; part of every settings hash. Bump it
 #: when a change would alter an identified model (start, fit, reduction, signals).
@@ -40,6 +40,10 @@ PIPELINE_VERSION = "pipeline-4"   # 2: apparent-mass diagonals protected in the 
 #                                    3: the data-driven start uses the lowest *coherent* points;
 #                                    4: structures may add starts (6-state: equation-error M)
 
+#: Start displacement of the reproduction check's second wake [fraction of the radius]:
+#: the relative rounding of the single-precision Biot-Savart kernel, i.e. the size of
+#: the difference another machine's (or another backend's) records start from.
+REPRODUCTION_PERTURBATION = 1e-7
 
 
 class PipelineError(RuntimeError):
@@ -86,8 +90,9 @@ class IdentificationSettings(ExcitationSettings):
                 raise ValueError(f"{name} must be positive [%], got {getattr(self, name)!r}")
 
     def to_dict(self):
-        d = asdict(self)
-        d["wake"] = asdict(self.wake_settings)
+        # identity_dict: a settings field added later (neutral default) leaves the hash alone
+        d = identity_dict(self)
+        d["wake"] = identity_dict(self.wake_settings)
         d["fit_range"] = list(self.fit_range)
         return d
 
@@ -146,7 +151,7 @@ def identification_hash(config, condition, structure, settings=None, *, ct=None,
     payload = {"schema": SCHEMA, "pipeline": PIPELINE_VERSION,
                # the wake's own marker of result-changing code changes
                "wake_code": getattr(_sweeps, "_CACHE_VERSION", "unknown"),
-               "config": _wake_repr(config), "condition": asdict(condition), "structure": structure.spec(),
+               "config": _wake_repr(config), "condition": identity_dict(condition), "structure": structure.spec(),
                "trim": _trim_request(config, ct, trim), "settings": settings.to_dict()}
     return settings_hash(payload, digits=16), payload
 
@@ -157,11 +162,8 @@ _NOT_WAKE_INPUTS = ("control_phase",)
 
 def _wake_repr(config):
     """The configuration's dataclass ``repr`` without the fields the wake does not use."""
-    if not is_dataclass(config):
-        return repr(config)
-    items = ", ".join(f"{f.name}={getattr(config, f.name)!r}" for f in fields(config)
-                      if f.repr and f.name not in _NOT_WAKE_INPUTS)
-    return f"{type(config).__qualname__}({items})"
+    # identity_repr: configuration fields added later (neutral defaults) leave the hash alone
+    return identity_repr(config, exclude=_NOT_WAKE_INPUTS)
 
 
 def _code_version():
@@ -200,6 +202,9 @@ class IdentifiedModel:
     staged : flightid.staging.StagedFitResult or None
         The staged fit (§6.4.3) before the reduction, for structures with a
         :meth:`~InflowStructure.staged_plan` (its ``.log`` lists the stages).
+    reproduction : aircraft.identification.trust.ReproductionCheck or None
+        The same identification on a second wake data set (``identify_inflow(...,
+        reproduce=True)``); part of the trust verdict when present.
     """
 
     name: str
@@ -216,6 +221,7 @@ class IdentifiedModel:
     provenance: dict = field(default_factory=dict)
     hash_payload: dict = field(default_factory=dict)
     staged: object = None
+    reproduction: object = None
 
     @property
     def cost_table(self) -> pd.DataFrame:
@@ -312,6 +318,7 @@ class IdentifiedModel:
                  f"max CR {free.cramer_rao_pct.max():.3g} %, max insensitivity "
                  f"{free.insensitivity_pct.max():.3g} % -> {'trusted' if self.trusted else 'NOT trusted'}",
                  *[f"  not trusted: {r}" for r in self.trust_failures()],
+                 f"reproduction on a second wake data set: {self.trust.limits['reproduction']}",
                  self.cost_table.to_string(index=False, float_format=fmt),
                  p.to_string(index=False, float_format=fmt),
                  self.verification_table.to_string(index=False, float_format=fmt)]
@@ -423,7 +430,7 @@ def _fit_and_verify(structure, responses, runs, doublet_spec, zero_spec, wake_tr
 
 def identify_inflow(config, condition=None, structure="single_rotor_3state", *, ct=None, trim=None,
                     settings=None, controls=None, name=None, n_jobs=2, cache_dir="default",
-                    progress=True, scheduler=None):
+                    progress=True, scheduler=None, reproduce=False):
     """Identify an inflow model of ``config`` from the free-vortex wake.
 
     Parameters
@@ -456,6 +463,13 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     scheduler : str or dask.distributed.Client, optional
         Where the wake runs execute (see :func:`aircraft.wake.run_sweeps`); None:
         this machine (``n_jobs`` processes).
+    reproduce : bool or "if_trusted"
+        Also identify on a second wake data set, marched from a start displaced by
+        :data:`REPRODUCTION_PERTURBATION` of the radius (what another machine's
+        rounding would give), and attach the comparison as ``model.reproduction``
+        (:func:`~aircraft.identification.trust.reproduction_check`), which the trust
+        verdict then includes. Doubles the cost; ``"if_trusted"`` spends it only on a
+        model the rest of the rule trusts (for the others the verdict is already no).
 
     Returns
     -------
@@ -483,6 +497,8 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     from flightid import joint_input_output
 
     t_start = time.perf_counter()
+    if not (isinstance(reproduce, bool) or reproduce == "if_trusted"):
+        raise PipelineError(f"reproduce must be True, False or 'if_trusted', got {reproduce!r}")
     settings = settings or IdentificationSettings()
     condition = condition or FlightCondition()
     structure = get_structure(structure)
@@ -535,7 +551,18 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
                   "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
                   "wall_s": round(time.perf_counter() - t_start, 1), "config": config.name
                   if hasattr(config, "name") else repr(config)[:60]}
-    return IdentifiedModel(name=name or f"{structure.key} from the free wake", structure=structure,
-                           fit=result, reduction=reduction, responses=responses, verification=check,
-                           noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
-                           provenance=provenance, hash_payload=payload, staged=staged)
+    model = IdentifiedModel(name=name or f"{structure.key} from the free wake", structure=structure,
+                            fit=result, reduction=reduction, responses=responses, verification=check,
+                            noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
+                            provenance=provenance, hash_payload=payload, staged=staged)
+    if reproduce is True or (reproduce == "if_trusted" and model.trusted):
+        from dataclasses import replace
+        second = replace(s, wake=replace(s.wake_settings, initial_perturbation=REPRODUCTION_PERTURBATION))
+        again = identify_inflow(config, condition, structure, trim=trim_req, settings=second, controls=controls,
+                                name=f"{model.name} (second data set)", n_jobs=n_jobs, cache_dir=cache_dir,
+                                progress=progress, scheduler=scheduler)
+        model.reproduction = reproduction_check(model, again)
+        model.provenance["reproduction"] = {"initial_perturbation": REPRODUCTION_PERTURBATION,
+                                            "J_ave_again": again.J_ave,
+                                            "passes": model.reproduction.passes}
+    return model

@@ -24,6 +24,13 @@ and band).
 
 A model without a reduction log (a model file, a fit that was not reduced) is held to
 the bounds strictly: nothing says a parameter over them cannot be removed.
+
+The last part of the rule is reproduction: the same identification on a second wake
+data set that differs at round-off (:func:`reproduction_check`; the pipeline makes one
+with ``identify_inflow(..., reproduce=True)`` from a wake started a single-precision
+rounding away) must keep the same parameters, each within its Cramér-Rao bound of the
+first value. A model whose reproduction was not checked is judged on the rest, and
+its check says so (``limits["reproduction"]``).
 """
 from __future__ import annotations
 
@@ -32,7 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-__all__ = ["TRUST_J_AVE_MAX", "TrustCheck", "trust_check"]
+__all__ = ["TRUST_J_AVE_MAX", "TrustCheck", "trust_check", "ReproductionCheck", "reproduction_check"]
 
 #: The CIFER guideline on the average cost of a trusted model (Tischler & Remple:
 #: J_ave <= 100 "generally reflects an acceptable level of accuracy").
@@ -102,7 +109,107 @@ def _limit(settings, name, default):
     return float(getattr(settings, name, default))
 
 
-def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=10.0):
+@dataclass
+class ReproductionCheck:
+    """Result of :func:`reproduction_check`.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per parameter free in either fit: ``parameter``, ``value``, ``value_again``,
+        ``cramer_rao_pct`` [%] (of the first fit), ``shift_pct`` (``|again - value| /
+        |value|`` [%]), ``shift_in_bounds`` (shift over the bound [-]) and ``reproduced``.
+    J_ave, J_ave_again : float
+        Average costs of the two fits [-].
+    """
+
+    table: pd.DataFrame
+    J_ave: float
+    J_ave_again: float
+
+    @property
+    def passes(self) -> bool:
+        """True when every parameter reproduces."""
+        return bool(len(self.table)) and bool(self.table.reproduced.all())
+
+    @property
+    def failures(self) -> list:
+        """The parameters that do not reproduce, as sentences."""
+        out = []
+        for r in self.table[~self.table.reproduced].itertuples():
+            if not np.isfinite(r.value_again):
+                out.append(f"{r.parameter} is not free in the second fit")
+            elif not np.isfinite(r.value):
+                out.append(f"{r.parameter} is free only in the second fit")
+            else:
+                out.append(f"{r.parameter} moved {r.shift_pct:.3g} % (its bound {r.cramer_rao_pct:.3g} %)")
+        return out
+
+    def to_pandas(self) -> pd.DataFrame:
+        """The per-parameter table (a copy)."""
+        return self.table.copy()
+
+
+def _free_table(model):
+    fit = getattr(model, "fit", None)
+    params = getattr(fit, "parameters", None) if fit is not None else getattr(model, "parameters", None)
+    if not isinstance(params, pd.DataFrame) or "status" not in params:
+        raise ValueError(f"model {getattr(model, 'name', model)!r} has no parameter table to compare")
+    return params[params.status == "free"].set_index("parameter")
+
+
+def reproduction_check(model, again):
+    """Whether an identification reproduces on a second data set, parameter by parameter.
+
+    A parameter reproduces when it is free in both fits and the second value lies
+    within the first fit's Cramér-Rao bound of the first (``|again - value| <=
+    CR% |value|``): the bound is the scatter the data are said to allow, so a fit
+    that moves further on data differing at round-off has found another optimum, not
+    the parameter's value.
+
+    Parameters
+    ----------
+    model, again : IdentifiedModel or ModelRecord
+        The identification and the same identification on the second data set (each
+        with a parameter table: ``parameter``, ``value``, ``status``, ``cramer_rao_pct``).
+
+    Returns
+    -------
+    ReproductionCheck
+
+    Raises
+    ------
+    ValueError
+        A model without a parameter table.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from types import SimpleNamespace
+    >>> def model(values, cr, J):
+    ...     table = pd.DataFrame({"parameter": ["m", "l"], "value": values, "status": "free",
+    ...                           "cramer_rao_pct": cr, "insensitivity_pct": 1.0})
+    ...     return SimpleNamespace(fit=SimpleNamespace(parameters=table), J_ave=J)
+    >>> check = reproduction_check(model([1.0, 2.0], [5.0, 5.0], 10.0), model([1.01, 2.3], [5.0, 5.0], 10.2))
+    >>> check.passes, check.table.reproduced.tolist()
+    (False, [True, False])
+    """
+    a, b = _free_table(model), _free_table(again)
+    rows = []
+    for name in list(a.index) + [n for n in b.index if n not in a.index]:
+        va = float(a.value[name]) if name in a.index else np.nan
+        vb = float(b.value[name]) if name in b.index else np.nan
+        cr = float(a.cramer_rao_pct[name]) if name in a.index else np.nan
+        shift = abs(vb - va) / abs(va) * 100.0 if va != 0 else (0.0 if vb == 0 else np.inf)
+        in_bounds = shift / cr if cr > 0 else (0.0 if shift == 0 else np.inf)
+        ok = bool(np.isfinite(va) and np.isfinite(vb) and in_bounds <= 1.0)
+        rows.append((name, va, vb, cr, shift, in_bounds, ok))
+    table = pd.DataFrame(rows, columns=["parameter", "value", "value_again", "cramer_rao_pct", "shift_pct",
+                                        "shift_in_bounds", "reproduced"])
+    return ReproductionCheck(table, float(getattr(model, "J_ave", np.nan)), float(getattr(again, "J_ave", np.nan)))
+
+
+def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=10.0, reproduction=None):
     """Whether an identified model is trusted, parameter by parameter, with the reasons.
 
     Parameters
@@ -116,6 +223,10 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
     max_rise_average, max_rise_single : float
         Cost rises [-] of a refused removal that keep a parameter over the Cramér-Rao
         bound: the average J, any single response's J (:func:`flightid.reduce`'s defaults).
+    reproduction : ReproductionCheck, optional
+        The same identification on a second data set (:func:`reproduction_check`; by
+        default the model's own ``reproduction`` if it has one). Without one the
+        reproduction is reported as not checked, not as a failure.
 
     Returns
     -------
@@ -182,9 +293,15 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
     if deg is not None and len(deg.flat_directions):
         failures.append(f"{len(deg.flat_directions)} flat direction(s) of the cost: "
                         + "; ".join(deg.flat_directions.parameters.astype(str)))
+    if reproduction is None:
+        reproduction = getattr(model, "reproduction", None)
+    if reproduction is not None and not reproduction.passes:
+        failures.append("the fit does not reproduce on a second data set: " + "; ".join(reproduction.failures))
     limits = {"cramer_rao_max": cr_max, "insensitivity_max": ins_max, "j_ave_max": float(j_max),
               "max_rise_average": float(max_rise_average), "max_rise_single": float(max_rise_single),
-              "keep_rule": keep_rule}
+              "keep_rule": keep_rule,
+              "reproduction": "not checked" if reproduction is None else
+              ("reproduced" if reproduction.passes else "not reproduced")}
     return TrustCheck(table, failures, limits)
 
 

@@ -1,10 +1,11 @@
 """Settings of the free-vortex wake (a dataclass, SI units and radians)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, asdict
+from dataclasses import dataclass, asdict, field
 import math
 
 from .._validation import integer as _integer, real as _real
+from ..provenance import HASHED_IF_SET
 
 __all__ = ["WakeSettings", "FlightCondition", "WakeSettingsError"]
 
@@ -103,6 +104,13 @@ class WakeSettings:
         averages) fell from 1.2-1.7 % to 0.15-0.2 % and its spectral peak (10
         rad/s at 2 free revolutions, 6 rad/s at 4) went; with this filter, one
         velocity for both rotors and the convected far wake it is 0.1-0.15 %.
+    initial_perturbation : float
+        Size of a seeded random displacement of every starting tip-vortex marker,
+        as a fraction of the rotor radius [-] (0, the default: none). A wake
+        marched from a starting geometry that differs at the level of the
+        kernel's single-precision rounding (about 1e-7) is the second data set of
+        an identification's reproduction check: what another machine would have
+        computed. At most 1e-3 (a perturbation, not another wake).
     """
 
     azimuth_step: float = math.radians(10.0)
@@ -124,6 +132,7 @@ class WakeSettings:
     far_wake_step: float = math.radians(30.0)
     far_wake_convected: bool = True
     buffer_velocity_revolutions: float = 2.0
+    initial_perturbation: float = field(default=0.0, metadata=HASHED_IF_SET)
 
     def __post_init__(self):
         e = WakeSettingsError
@@ -173,6 +182,7 @@ class WakeSettings:
             raise WakeSettingsError("buffer_velocity_revolutions must be a finite value >= 0 [rev]")
         if self.core_delta < 0:
             raise WakeSettingsError("core_delta must be >= 0")
+        _real(e, "WakeSettings.initial_perturbation", self.initial_perturbation, lo=0.0, hi=1e-3)
 
     @property
     def steps_per_rev(self) -> int:

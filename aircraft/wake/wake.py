@@ -284,6 +284,10 @@ class FreeVortexWake:
         for ir, rot in enumerate(self.rotors):
             ct = cts[ir]
             X = initial_tip_vortices(self, ir, ct, ages, mu)
+            if s.initial_perturbation > 0:
+                # the reproduction check's second data set: a start differing at round-off level
+                rng = np.random.default_rng(ir)
+                X = X + s.initial_perturbation * rot.R * rng.standard_normal(X.shape)
             self.X.append(X)
             self.Xold.append(X.copy())
             self.Vold.append(np.zeros((rot.nb, s.n_free + 1, 3)))

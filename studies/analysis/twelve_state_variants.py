@@ -95,7 +95,7 @@ class TwelveStateComparison:
 
 def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settings=None, fly=True,
                                   quasi_steady=True, hold_s=10.0, window=(6.0, 10.0), n_jobs=2,
-                                  cache_dir="default", progress=True, references=None):
+                                  cache_dir="default", progress=True, references=None, reproduce="if_trusted"):
     """Identify each constrained 12-state structure from the same coaxial hover wake data.
 
     Parameters
@@ -125,6 +125,9 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
     n_jobs, cache_dir, progress :
         As :func:`~aircraft.identification.identify_inflow` (the wake runs are the
         same for every variant: one data set, cached after the first).
+    reproduce : bool or "if_trusted"
+        As :func:`~aircraft.identification.identify_inflow`: the second wake data set
+        of the reproduction check (one set, cached, for every variant that needs it).
     references : mapping of str to IdentifiedInflow or str, optional
         Models flown beside the variants for their roll damping only (a shipped
         model's name, e.g. ``"published_eq6_8_6_9"``, or an inflow model): rows
@@ -153,7 +156,7 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
         structure = kwargs if isinstance(kwargs, Coaxial12StateConstrained) else Coaxial12StateConstrained(**kwargs)
         t0 = time.perf_counter()
         model = identify_inflow(config, None, structure, ct=ct, settings=settings, name=label,
-                                n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
+                                n_jobs=n_jobs, cache_dir=cache_dir, progress=progress, reproduce=reproduce)
         wall = time.perf_counter() - t0
         p = model.parameters
         free = p[p.status == "free"]
@@ -166,6 +169,7 @@ def compare_twelve_state_variants(variants=None, config=None, *, ct=None, settin
                "n_cramer_rao_over": int((~(cr < model.settings.cramer_rao_max)).sum()),
                "max_insensitivity_pct": float(free.insensitivity_pct.max()),
                "n_flat": 0 if deg is None else len(deg.flat_directions), "trusted": model.trusted,
+               "reproduction": model.trust.limits["reproduction"],
                "wall_s": wall}
         if fly:
             row.update(_roll_damping(model))

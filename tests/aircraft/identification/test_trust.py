@@ -93,3 +93,49 @@ def test_bad_inputs():
     with pytest.raises(ValueError, match="no parameter table"):
         trust_check(SimpleNamespace(name="x"))
     assert trust_check(_model([], [])).failures[0] == "no free parameter"
+
+
+def _fitted(values, cr=5.0, J_ave=40.0, status=None):
+    """A stub with a parameter table holding values (as reproduction_check reads it)."""
+    rows = [{"parameter": n, "value": v, "status": (status or {}).get(n, "free"), "cramer_rao_pct": cr,
+             "insensitivity_pct": 1.0} for n, v in values.items()]
+    return SimpleNamespace(name="stub", fit=SimpleNamespace(parameters=pd.DataFrame(rows), degeneracy=None),
+                           J_ave=J_ave, settings=None, reduction=None)
+
+
+def test_reproduction_within_the_bounds_passes_and_outside_fails():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    # 4.9 % and 4.5 % moves against a 5 % bound: reproduced
+    check = reproduction_check(first, _fitted({"m": 1.049, "l": -2.09}))
+    assert check.passes and check.failures == []
+    assert check.table.shift_in_bounds.round(6).tolist() == [0.98, 0.9]
+    # a 6 % move of l fails, with its numbers in the reason
+    check = reproduction_check(first, _fitted({"m": 1.0, "l": -2.12}))
+    assert not check.passes and check.table.reproduced.tolist() == [True, False]
+    assert "l moved 6 %" in check.failures[0]
+
+
+def test_reproduction_fails_when_the_two_fits_keep_different_parameters():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    removed = reproduction_check(first, _fitted({"m": 1.0, "l": 0.0}, status={"l": "fixed"}))
+    assert removed.failures == ["l is not free in the second fit"]
+    extra = reproduction_check(first, _fitted({"m": 1.0, "l": -2.0, "t": 0.02}))
+    assert extra.failures == ["t is free only in the second fit"]
+
+
+def test_trust_includes_the_reproduction_when_there_is_one():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    assert trust_check(first).limits["reproduction"] == "not checked" and trust_check(first).passes
+    good = reproduction_check(first, _fitted({"m": 1.01, "l": -2.0}))
+    assert trust_check(first, reproduction=good).passes
+    assert trust_check(first, reproduction=good).limits["reproduction"] == "reproduced"
+    bad = reproduction_check(first, _fitted({"m": 1.5, "l": -2.0}))
+    g = trust_check(first, reproduction=bad)
+    assert not g.passes and g.limits["reproduction"] == "not reproduced"
+    assert any("does not reproduce" in f and "m moved 50 %" in f for f in g.failures)
+    # the model's own reproduction is used when none is passed
+    first.reproduction = bad
+    assert not trust_check(first).passes
