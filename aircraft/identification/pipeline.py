@@ -302,6 +302,8 @@ class IdentifiedModel:
             loads_ref=loads_ref, inflow_ref=inflow_ref, frame=self.structure.frame, time="azimuth",
             pade_order=self.settings.pade_order, cost_table=self.cost_table, parameters=self.parameters,
             verification=self.verification_table, trim_outputs=dict(self.trim.outputs),
+            reduction_log=self.reduction.log if self.reduction is not None else pd.DataFrame(),
+            reproduction=self.reproduction.table if self.reproduction is not None else pd.DataFrame(),
             settings=self.hash_payload, settings_hash=self.settings_hash, provenance=self.provenance,
             description=description or f"{self.structure.key} identified from our free-vortex wake")
 

@@ -22,8 +22,9 @@ and band).
         .failures      the reasons the model is not trusted, as sentences
         .plot()        the parameters' bounds against the guideline
 
-A model without a reduction log (a model file, a fit that was not reduced) is held to
-the bounds strictly: nothing says a parameter over them cannot be removed.
+A model without a reduction log (a fit that was not reduced, a model file written
+before files kept the log) is held to the bounds strictly: nothing says a parameter
+over them cannot be removed.
 
 The last part of the rule is reproduction: the same identification on a second wake
 data set that differs at round-off (:func:`reproduction_check`; the pipeline makes one
@@ -216,7 +217,8 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
     ----------
     model : IdentifiedModel or ModelRecord
         An identified model (its fit, settings, degeneracy report and, when reduced, the
-        reduction's log), or a model file's record (its parameter table and settings).
+        reduction's log), or a model file's record (its parameter table and settings,
+        and the reduction log and reproduction table when the file stores them).
     j_ave_max : float, optional
         Largest trusted average cost (default :data:`TRUST_J_AVE_MAX`; pass the
         dissertation's J_ave for the same structure and band where it prints one).
@@ -263,6 +265,9 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
     ins_max = _limit(settings, "insensitivity_max", 10.0)
     reduction = getattr(model, "reduction", None)
     log = getattr(reduction, "log", None) if reduction is not None else None
+    stored = getattr(model, "reduction_log", None)          # a model file's copy of the log
+    if log is None and isinstance(stored, pd.DataFrame) and len(stored):
+        log = stored
     keep_rule = isinstance(log, pd.DataFrame)
     free = params[params.status == "free"]
     failures, rows = [], []
@@ -295,6 +300,9 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
                         + "; ".join(deg.flat_directions.parameters.astype(str)))
     if reproduction is None:
         reproduction = getattr(model, "reproduction", None)
+        if isinstance(reproduction, pd.DataFrame):           # a model file's copy of the table
+            reproduction = (ReproductionCheck(reproduction, float(getattr(model, "J_ave", np.nan)), np.nan)
+                            if len(reproduction) else None)
     if reproduction is not None and not reproduction.passes:
         failures.append("the fit does not reproduce on a second data set: " + "; ".join(reproduction.failures))
     limits = {"cramer_rao_max": cr_max, "insensitivity_max": ins_max, "j_ave_max": float(j_max),

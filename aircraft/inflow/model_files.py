@@ -68,6 +68,12 @@ class ModelRecord:
     frame : str
         ``"rotor"`` (ours) or ``"printed"``.
     cost_table, parameters, verification : DataFrame
+    reduction_log : DataFrame
+        The reduction's log (one row per removal tried; empty for a model that
+        was not reduced or was written before logs were stored): what lets the
+        trust rule keep a parameter over its bound when its removal was too costly.
+    reproduction : DataFrame
+        The reproduction check's table (empty if not checked).
     settings : dict
     settings_hash : str
     provenance : dict
@@ -90,6 +96,8 @@ class ModelRecord:
     cost_table: pd.DataFrame = field(default_factory=pd.DataFrame)
     parameters: pd.DataFrame = field(default_factory=pd.DataFrame)
     verification: pd.DataFrame = field(default_factory=pd.DataFrame)
+    reduction_log: pd.DataFrame = field(default_factory=pd.DataFrame)
+    reproduction: pd.DataFrame = field(default_factory=pd.DataFrame)
     trim_outputs: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
     settings_hash: str = ""
@@ -123,7 +131,10 @@ class ModelRecord:
             "trim": {"loads_ref": self.loads_ref, "inflow_ref": self.inflow_ref, "outputs": self.trim_outputs},
             "J_ave": self.J_ave, "cost_table": self.cost_table, "parameters": self.parameters,
             "verification": self.verification, "settings": self.settings,
-            "settings_hash": self.settings_hash, "provenance": self.provenance})
+            "settings_hash": self.settings_hash, "provenance": self.provenance,
+            # optional tables, written only when there is one (older files have neither)
+            **{k: v for k, v in (("reduction_log", self.reduction_log), ("reproduction", self.reproduction))
+               if len(v)}})
 
     def save(self, path):
         """Write the record as JSON to ``path`` (a file name); returns the Path."""
@@ -146,6 +157,7 @@ class ModelRecord:
                        frame=d.get("frame", "rotor"), time=d.get("time", "azimuth"),
                        pade_order=int(d.get("pade_order", 2)), cost_table=_table(d.get("cost_table")),
                        parameters=_table(d.get("parameters")), verification=_table(d.get("verification")),
+                       reduction_log=_table(d.get("reduction_log")), reproduction=_table(d.get("reproduction")),
                        trim_outputs=dict(trim.get("outputs") or {}), settings=d.get("settings") or {},
                        settings_hash=d.get("settings_hash", ""), provenance=d.get("provenance") or {},
                        description=d.get("description", ""))
