@@ -3,9 +3,11 @@
 Hover: unknowns are the four pilot controls (collective, longitudinal, lateral,
 pedal), roll and pitch attitude, the flap MBC displacements and the inflow
 states; every acceleration, flap acceleration and inflow derivative is zero.
-Forward flight (speed > 0): the pitch attitude is set by the target rotor angle
-of attack (shaft normal to body x), and the propeller control replaces it as
-an unknown.  The coaxial's differential cyclics are fixed: zero longitudinal
+Forward flight (speed > 0) of the compound: the pitch attitude is set by the
+target rotor angle of attack (shaft normal to body x), and the propeller control
+replaces it as an unknown. A single-rotor aircraft keeps its pitch attitude as an
+unknown at every speed (``rotor_aoa`` is not used): the same 4 controls, 2
+attitudes, flap and inflow states balance the same equations from hover up.  The coaxial's differential cyclics are fixed: zero longitudinal
 difference and a chosen lateral difference (lift offset), as in §7.2.
 Solved with scipy's Levenberg-Marquardt then Newton polishing to |residual| <
 ``tol`` (scaled: body accelerations in SI, flap accelerations / Omega^2, inflow
@@ -52,7 +54,7 @@ class _BudgetExceeded(Exception):
 
 @dataclass(frozen=True)
 class TrimCondition:
-    """speed [m/s] (level flight), rotor_aoa [rad] (forward flight, shaft angle to the
+    """speed [m/s] (level flight), rotor_aoa [rad] (compound in forward flight, shaft angle to the
     flight path, positive nose up), lateral_cyclic_difference [rad]: the
     differential lateral cyclic held fixed at trim to set the lift offset (§7.2), paired
     with the aircraft's control phase like the lateral stick: positive moves each
@@ -103,6 +105,19 @@ def _controls(heli, pilot, condition):
     if heli.config.is_coaxial and condition.lateral_cyclic_difference:
         u = u + lateral_cyclic_difference_controls(heli.config, condition.lateral_cyclic_difference)
     return u
+
+
+def _pedal_guess(cfg, ct, rc):
+    """Pedal of a hover trim estimate: tail-rotor thrust from the main rotor's momentum
+    torque (induced power with 15 % losses plus profile power), collective from
+    blade-element momentum theory at 3/4 radius, through the pedal sign of the mixing."""
+    from .mixing import mixing_matrix
+    tr = cfg.tail_rotor
+    cq = 1.15 * ct ** 1.5 / np.sqrt(2.0) + rc.solidity * rc.cd0 / 8
+    torque = cq * rc.thrust_scale(cfg.rho) * rc.radius
+    ct_tr = torque / abs(tr.position[0]) / (cfg.rho * tr.disk_area * tr.tip_speed ** 2)
+    theta_tr = 6 * ct_tr / (tr.solidity * tr.lift_slope) + 1.5 * np.sqrt(ct_tr / 2)
+    return theta_tr / mixing_matrix(cfg)[3, 3]
 
 
 def _check_blade_loading(heli):
@@ -201,6 +216,8 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     pilot0 = np.array([th0, 0.0, 0.0, 0.0, 0.0]) if coax else np.array([th0, 0.0, 0.0, 0.0])
     if coax:
         pilot0[0] = th0    # delta_col = K (th0 + th0) = th0 for K = 0.5
+    elif cfg.tail_rotor is not None:
+        pilot0[3] = _pedal_guess(cfg, ct0, rc)
     att0 = np.array([0.0, 0.0])
 
     def unpack(z):
@@ -217,7 +234,7 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
             i = 4
         phi = z[i]
         i += 1
-        if forward:
+        if forward and coax:
             theta = condition.rotor_aoa
         else:
             theta = z[i]
@@ -273,7 +290,7 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     if coax and forward:
         z0.append(0.1)
     z0.append(att0[0])
-    if not forward:
+    if not (forward and coax):
         z0.append(att0[1])
     for k in range(nrot):
         z0 += [0.02, 0.0, 0.0, 0.0]
