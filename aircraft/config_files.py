@@ -263,7 +263,9 @@ def _to_toml(config, header=None):
     else:
         lines += ["", "[propeller]  # pusher propeller, thrust along body +x"]
         lines += _toml_lines(config.propeller, "propeller.")
-    if config.tail_rotor is not None:
+    if config.tail_rotor is None:
+        lines += ["", "# tail_rotor not set (no [tail_rotor] table)"]
+    else:
         lines += ["", "[tail_rotor]  # anti-torque rotor, thrust along body +-y"]
         lines += _toml_lines(config.tail_rotor, "tail_rotor.")
     return "\n".join(lines) + "\n"

@@ -14,8 +14,8 @@ import pytest
 import aircraft
 from aircraft.config_files import (ConfigFileError, FORMAT_VERSION, _schema, load_shipped_aircraft,
                                    read_aircraft, shipped_aircraft, write_aircraft)
-from aircraft.configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, coaxial_compound,
-                              uh60_single_rotor)
+from aircraft.configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, TailRotorConfig,
+                              coaxial_compound, uh60_single_rotor)
 
 FACTORIES = {"coaxial_compound": coaxial_compound, "uh60_single_rotor": uh60_single_rotor}
 
@@ -104,10 +104,14 @@ def test_the_file_says_its_units_and_every_field(tmp_path):
     text = write_aircraft(uh60_single_rotor(), tmp_path / "u.toml").read_text()
     assert re.search(r"^# flap_inertia not set", text, re.M)
     assert "[propeller]" not in text.replace("no [propeller] table", "")
+    # the single rotor's tail rotor is its own table with every field
+    assert re.search(r"^\[tail_rotor\]", text, re.M)
+    for f in dataclasses.fields(TailRotorConfig):
+        assert re.search(rf"^{f.name}\b", text.split("[tail_rotor]")[1], re.M), f.name
 
 
 def test_the_schema_covers_every_dataclass_field():
-    for cls in (AircraftConfig, RotorConfig, PropellerConfig):
+    for cls in (AircraftConfig, RotorConfig, PropellerConfig, TailRotorConfig):
         assert list(_schema(cls)) == [f.name for f in dataclasses.fields(cls)]
 
 
