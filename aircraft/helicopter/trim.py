@@ -120,6 +120,26 @@ def _pedal_guess(cfg, ct, rc):
     return theta_tr / mixing_matrix(cfg)[3, 3]
 
 
+def _start_from(heli, start, coax, forward, nrot, nin, size):
+    """Unknowns of the trim problem taken from an earlier trim of the same helicopter."""
+    if not isinstance(start, TrimResult) or start.helicopter is not heli:
+        raise TrimInputError("start must be a TrimResult of this same Helicopter, got "
+                             f"{type(start).__name__}")
+    z = list(start.pilot[:4])
+    if coax and forward:
+        z.append(start.pilot[4])
+    z.append(start.x[6])
+    if not (coax and forward):
+        z.append(start.x[7])
+    for k in range(nrot):
+        z += list(start.x[9 + 8 * k:9 + 8 * k + 4])
+    z += list(start.x[heli.n_rigid:heli.n_rigid + nin])
+    z = np.array(z, float)
+    if z.size != size:
+        raise TrimInputError(f"start has {z.size} trim unknowns, this trim {size}")
+    return z
+
+
 def _check_blade_loading(heli):
     """Refuse at once a weight no rotor of this aircraft can carry (C_T/sigma vs stall)."""
     share = heli.config.weight / len(heli.rotors)
@@ -137,7 +157,7 @@ def _check_blade_loading(heli):
 
 
 def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, max_nfev=None,
-         max_time=60.0) -> TrimResult:
+         max_time=60.0, start=None) -> TrimResult:
     """Trim ``heli`` at ``condition``; raise :class:`TrimError` naming the residuals if it fails.
 
     Parameters
@@ -156,6 +176,10 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     max_time : float or None
         Wall-clock budget [s] of the whole trim; None: only the evaluation
         budgets bound it.
+    start : TrimResult, optional
+        A trim of the same helicopter to start from (its controls, attitudes,
+        flap and inflow states), e.g. the neighbouring speed of a sweep; default:
+        a momentum-theory estimate.
 
     Raises
     ------
@@ -296,6 +320,8 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
         z0 += [0.02, 0.0, 0.0, 0.0]
     z0 += list(xin0)
     z0 = np.array(z0, float)
+    if start is not None:
+        z0 = _start_from(heli, start, coax, forward, nrot, nin, z0.size)
     if len(residual(z0)) != len(z0):
         raise TrimError(f"trim problem is not square: {len(residual(z0))} equations, {len(z0)} unknowns")
     names = ["udot", "vdot", "wdot", "pdot", "qdot", "rdot"] + \
