@@ -132,9 +132,9 @@ def tail_rotor_loads(tail, theta, velocity, rho):
     --------
     >>> from aircraft.configs import TailRotorConfig
     >>> tr = TailRotorConfig()
-    >>> f, p = tail_rotor_loads(tr, 0.2, [0.0, 0.0, 0.0], 1.225)
-    >>> bool(f[1] > 0), f[0] == f[2] == 0.0
-    (True, True)
+    >>> f, p = tail_rotor_loads(tr, 0.2, [0.0, 0.0, 0.0], 1.225)   # hover, 11.5 deg
+    >>> round(float(f[1]) / 1e3, 2), round(p / 1e3, 1)                # side force [kN], power [kW]
+    (6.44, 134.1)
     """
     v = np.asarray(velocity, float)
     vt = tail.tip_speed
