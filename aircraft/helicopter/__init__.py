@@ -7,20 +7,21 @@
                                │                      ├─ coupling_numerator(sys, "p", "delta_lat", {...})
                                │                      ├─ classify_modes(sys) / flap_mode_damping(sys)
                                │                      └─ effective_derivative(sys, "p", "p", omega)
-                               └─ trim_sweep(heli, speeds) ──► TrimSweep (table, eigenvalues, .plot())
+                               └─ sweep.trim_sweep(heli, speeds) ──► TrimSweep (table, eigenvalues, .plot())
     compare_bare_airframe({"Dynamic Climb": DynamicClimb(), ...}) ──► BareAirframeComparison
     ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
     tilt_coupling.py (not re-exported): TiltCoupledHelicopter / helicopter_for, which
         feed a TiltInflow the flapping states as tip-path-plane tilts
     control_phase.py (not re-exported): cyclic_moment_shares(sys, config) and
         derive_control_phase(sys, config), which cyclic acts on which axis
+    sweep.py (not re-exported): trim_sweep(heli, speeds), trims, linear models and
+        eigenvalues against speed, with figures
     hold.py (not re-exported): hold_states(sys, ["u", "v"]), states held at trim
         (a perfectly tight outer loop)
 """
 from .mixing import PILOT_INPUTS, ROTOR_CONTROLS, mixing_matrix
 from .model import BODY_STATES, Helicopter, HelicopterSettings
 from .trim import TrimCondition, TrimError, TrimInputError, TrimResult, trim
-from .sweep import trim_sweep
 from .linearize import (LinearizeInputError, NotAtTrimError, NotAtTrimWarning, default_steps,
                         linearize, modes, trim_derivatives)
 from .coupling import CouplingError, coupling_numerator, residualize
@@ -31,7 +32,6 @@ from .rotor_stand import RotorStandError, ShaftFixedRotors
 
 __all__ = ["PILOT_INPUTS", "ROTOR_CONTROLS", "mixing_matrix", "BODY_STATES", "Helicopter",
            "HelicopterSettings", "TrimCondition", "TrimError", "TrimInputError", "TrimResult", "trim",
-           "trim_sweep",
            "default_steps", "linearize", "modes", "trim_derivatives", "LinearizeInputError",
            "NotAtTrimError", "NotAtTrimWarning", "CouplingError", "coupling_numerator", "residualize",
            "DerivativeError", "effective_derivative",
