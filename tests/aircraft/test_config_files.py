@@ -89,6 +89,22 @@ def test_round_trip_of_awkward_values(tmp_path):
     assert back.rotors[0].hub_position == (0.0, 1e-300, -2.0)
 
 
+def test_round_trip_of_a_tail_rotor_and_fuselage_lift(tmp_path):
+    tail = TailRotorConfig(radius=1 / 3, omega=100.0 + 1e-13, solidity=0.2, twist=-math.pi / 11,
+                           position=(-7, 0.25, -1.5), thrust_sign=-1)
+    config = dataclasses.replace(uh60_single_rotor(), tail_rotor=tail, fuselage_lift_area=0.1 + 0.2)
+    path = write_aircraft(config, tmp_path / "t.toml")
+    assert read_aircraft(path) == config
+    # degrees accepted as for every angle; a tail rotor on a coaxial is refused, naming the field
+    text = path.read_text().replace(f"twist       = {-math.pi / 11!r}", "twist_deg = -10.0")
+    assert read_aircraft(_write(tmp_path, text, "d.toml")).tail_rotor.twist == pytest.approx(math.radians(-10.0))
+    coax = write_aircraft(coaxial_compound(), tmp_path / "c.toml").read_text()
+    with pytest.raises(ConfigFileError, match="tail_rotor: only a single-rotor aircraft"):
+        read_aircraft(_write(tmp_path, coax + "\n[tail_rotor]\nradius = 1.0\n", "e.toml"))
+    with pytest.raises(ConfigFileError, match=r"tail_rotor: TailRotorConfig.thrust_sign must be \+1 or -1, got 2"):
+        read_aircraft(_write(tmp_path, path.read_text().replace("thrust_sign = -1", "thrust_sign = 2"), "f.toml"))
+
+
 def test_the_file_says_its_units_and_every_field(tmp_path):
     text = write_aircraft(coaxial_compound(), tmp_path / "c.toml").read_text()
     assert "SI" in text.splitlines()[2] and "RADIANS" in text

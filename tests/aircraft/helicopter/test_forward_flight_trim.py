@@ -168,3 +168,16 @@ def test_trim_sweep_reports_a_failed_speed_instead_of_raising(uh60):
     sweep = trim_sweep(uh60, [0.0], linearise=False, max_time=1e-6)
     assert not sweep.table["converged"].iloc[0]
     assert "budget" in sweep.table["message"].iloc[0]
+
+
+def test_trim_starts_from_a_neighbouring_trim(uh60):
+    first = trim(uh60, TrimCondition(speed=40.0))
+    again = trim(uh60, TrimCondition(speed=45.0), start=first)
+    fresh = trim(uh60, TrimCondition(speed=45.0))
+    # one trim, whichever start: the same solution to well within the solver's 1e-9 residual
+    assert np.max(np.abs(again.x - fresh.x)) < 1e-7 and np.max(np.abs(again.u - fresh.u)) < 1e-7
+    other = Helicopter(uh60_single_rotor(), PittPeters())
+    with pytest.raises(ValueError, match="start must be a TrimResult of this same Helicopter"):
+        trim(other, TrimCondition(speed=45.0), start=first)
+    with pytest.raises(ValueError, match="start must be a TrimResult"):
+        trim(uh60, TrimCondition(speed=45.0), start="hover")
