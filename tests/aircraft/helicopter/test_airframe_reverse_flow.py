@@ -84,7 +84,7 @@ def test_tail_rotor_in_edgewise_flow_matches_glauert():
     mu = v / tr.tip_speed
     sa = tr.solidity * tr.lift_slope
     ct = f[1] / (RHO * tr.disk_area * tr.tip_speed ** 2)
-    lam = ct / (2 * math.hypot(mu, 0.0) * math.sqrt(1 + 0.0))   # first guess, refined below
+    lam = ct / (2 * mu)                  # first guess, refined below
     for _ in range(50):   # Glauert: C_T = 2 lam sqrt(mu^2 + lam^2), solved by fixed point
         lam = ct / (2 * math.sqrt(mu * mu + lam * lam))
     th0 = theta - 0.75 * tr.twist
