@@ -418,7 +418,8 @@ ASSUMPTIONS = {
                         "(3) Izz also carries the two rotors' polar inertia, 8 I_b = 28,900, because the "
                         "rotor speed is held relative to the shaft (no rotor-speed state). "
                         "Sensitivity of the flap-body modes to Ixx: results/coaxial_hover_poles/.",
-    "coaxial.fuselage": "f_x 2.5 m^2, f_z 20 m^2 flat-plate areas (regression-model class).",
+    "coaxial.fuselage": "f_x 2.5 m^2 drag area along x, f_z 20 m^2 cross-flow (vertical and lateral) drag "
+                        "area (regression-model class); no fuselage lift (fuselage_lift_area 0).",
     "coaxial.tails": "horizontal tail 4.0 m^2 at 7.5 m aft; vertical tail 3.0 m^2 at 8.0 m aft.",
     "coaxial.propeller": "solidity 0.12, twist -30 deg, 9.5 m aft of the c.g.",
     "all.lift_slope": "5.73 /rad (2 pi corrected for thickness); stall at 12 deg.",
