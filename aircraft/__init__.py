@@ -15,11 +15,11 @@ An aircraft is also data: ``write_aircraft`` / ``read_aircraft``
 (:mod:`aircraft.config_files`) store an ``AircraftConfig`` as a TOML file, and
 ``load_shipped_aircraft`` reads the two shipped ones (``aircraft/data/aircraft``).
 """
-from .configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, ASSUMPTIONS,
+from .configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, TailRotorConfig, ASSUMPTIONS,
                       coaxial_compound, uh60_single_rotor)
 from .config_files import ConfigFileError, load_shipped_aircraft, read_aircraft, write_aircraft
 
-__all__ = ["AircraftConfig", "ConfigError", "PropellerConfig", "RotorConfig", "ASSUMPTIONS",
+__all__ = ["AircraftConfig", "ConfigError", "PropellerConfig", "RotorConfig", "TailRotorConfig", "ASSUMPTIONS",
            "coaxial_compound", "uh60_single_rotor", "read_aircraft", "write_aircraft",
            "load_shipped_aircraft", "ConfigFileError", "identify_inflow", "IdentificationSettings",
            "IdentifiedModel"]

@@ -66,7 +66,7 @@ try:
 except ModuleNotFoundError:  # Python 3.10: the same parser as the tomli package
     import tomli as _toml
 
-from .configs import AircraftConfig, ConfigError, PropellerConfig, RotorConfig
+from .configs import AircraftConfig, ConfigError, PropellerConfig, RotorConfig, TailRotorConfig
 
 __all__ = ["ConfigFileError", "FORMAT_VERSION", "write_aircraft", "read_aircraft", "shipped_aircraft",
            "load_shipped_aircraft"]
@@ -86,7 +86,7 @@ class ConfigFileError(ConfigError):
 
 # --- the schema: every dataclass field, its kind and its unit ---------------------
 # kinds: "str", "float", "int", "vector" (array of numbers -> tuple of floats),
-# "optional float" (absent key: None). ``rotors`` and ``propeller`` are tables.
+# "optional float" (absent key: None). ``rotors``, ``propeller`` and ``tail_rotor`` are tables.
 _ROTOR = {
     "name": ("str", 'signal suffix: "U", "L", or "" for a single rotor'),
     "radius": ("float", "m"),
@@ -137,9 +137,24 @@ _AIRCRAFT = {
     "trim_ct": ("vector", "hover thrust coefficient per rotor, in rotor order"),
     "omega_cruise": ("optional float", "rad/s"),
     "control_phase": ("float", "rad"),
+    "fuselage_lift_area": ("float", "m^2/rad, fuselage lift per angle of attack"),
+    "tail_rotor": ("tail_rotor", ""),
 }
-_SCHEMAS = {RotorConfig: _ROTOR, PropellerConfig: _PROPELLER, AircraftConfig: _AIRCRAFT}
+_TAIL_ROTOR = {
+    "radius": ("float", "m"),
+    "omega": ("float", "rad/s"),
+    "solidity": ("float", "-"),
+    "lift_slope": ("float", "1/rad"),
+    "cd0": ("float", "-"),
+    "twist": ("float", "rad"),
+    "position": ("vector", "m, body axes from the c.g."),
+    "thrust_sign": ("int", "+1 thrust to starboard at positive collective, -1 to port"),
+}
+_SCHEMAS = {RotorConfig: _ROTOR, PropellerConfig: _PROPELLER, TailRotorConfig: _TAIL_ROTOR,
+            AircraftConfig: _AIRCRAFT}
 _DEG = "_deg"
+#: fields written as their own TOML tables
+_TABLES = ("rotors", "propeller", "tail_rotor")
 _NOT_SET = {
     "flap_inertia": "not set (None): a uniform blade of blade_mass, m L^2 / 3",
     "omega_cruise": "not set (None): no separate cruise rotor speed",
@@ -203,7 +218,7 @@ def _toml_lines(obj, owner):
     rows = []
     for field, (kind, unit) in _schema(type(obj)).items():
         value = getattr(obj, field)
-        if kind in ("rotors", "propeller"):
+        if kind in _TABLES:
             continue
         if value is None:
             rows.append((f"# {field}", "", _NOT_SET.get(field, "not set (None)")))
@@ -248,6 +263,11 @@ def _to_toml(config, header=None):
     else:
         lines += ["", "[propeller]  # pusher propeller, thrust along body +x"]
         lines += _toml_lines(config.propeller, "propeller.")
+    if config.tail_rotor is None:
+        lines += ["", "# tail_rotor not set (no [tail_rotor] table)"]
+    else:
+        lines += ["", "[tail_rotor]  # anti-torque rotor, thrust along body +-y"]
+        lines += _toml_lines(config.tail_rotor, "tail_rotor.")
     return "\n".join(lines) + "\n"
 
 
@@ -345,10 +365,10 @@ class _Reader:
     def fields(self, cls, table, where):
         """Keyword arguments of ``cls`` from the TOML table ``table`` at ``where``."""
         prefix = f"{where}." if where else ""
-        schema = {f: spec for f, spec in _schema(cls).items() if spec[0] not in ("rotors", "propeller")}
+        schema = {f: spec for f, spec in _schema(cls).items() if spec[0] not in _TABLES}
         angles = _angle_fields(cls)
         extra = {"format_version"} if cls is AircraftConfig else set()
-        tables = {"rotors", "propeller"} if cls is AircraftConfig else set()
+        tables = set(_TABLES) if cls is AircraftConfig else set()
         degrees = [a + _DEG for a in angles]
         for key in table:
             if key not in schema and key not in extra and key not in tables and key not in degrees:
@@ -405,6 +425,12 @@ class _Reader:
                 raise self.error(f"propeller must be a table ([propeller]), got {_describe(table)}")
             kwargs["propeller"] = self.build(PropellerConfig, self.fields(PropellerConfig, table, "propeller"),
                                              "propeller")
+        if "tail_rotor" in data:
+            table = data["tail_rotor"]
+            if not isinstance(table, dict):
+                raise self.error(f"tail_rotor must be a table ([tail_rotor]), got {_describe(table)}")
+            kwargs["tail_rotor"] = self.build(TailRotorConfig,
+                                              self.fields(TailRotorConfig, table, "tail_rotor"), "tail_rotor")
         return self.build(AircraftConfig, kwargs, "")
 
 

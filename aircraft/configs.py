@@ -23,7 +23,7 @@ from ._validation import integer as _integer, real as _real, vector as _vector
 
 __all__ = [
     "ConfigError", "FT", "LB", "RHO_SEA_LEVEL", "GRAVITY",
-    "RotorConfig", "PropellerConfig", "AircraftConfig",
+    "RotorConfig", "PropellerConfig", "TailRotorConfig", "AircraftConfig",
     "coaxial_compound", "uh60_single_rotor", "ASSUMPTIONS",
 ]
 
@@ -211,6 +211,67 @@ class PropellerConfig:
 
 
 @dataclass(frozen=True)
+class TailRotorConfig:
+    """Tail rotor modelled by blade-element momentum theory with uniform inflow.
+
+    Its thrust acts along body ``thrust_sign * y`` at ``position``; the rotor's
+    own shaft torque is not fed back to the body (it is small, and about the
+    pitch axis); its power is reported.
+
+    Parameters
+    ----------
+    radius : float
+        Radius [m].
+    omega : float
+        Rotor speed [rad/s].
+    solidity : float
+        Thrust-weighted solidity [-].
+    lift_slope : float
+        Section lift-curve slope [1/rad].
+    cd0 : float
+        Section profile drag coefficient [-].
+    twist : float
+        Linear twist from rotation axis to tip [rad].
+    position : tuple of float
+        Hub in body axes from the c.g. [m].
+    thrust_sign : int
+        +1: a positive collective thrusts towards body +y (starboard), -1 to port.
+    """
+
+    radius: float = 5.5 * FT
+    omega: float = 124.62
+    solidity: float = 0.1875
+    lift_slope: float = 5.73
+    cd0: float = 0.010
+    twist: float = math.radians(-18.0)
+    position: tuple = (-9.5, 0.0, -1.9)
+    thrust_sign: int = 1
+
+    def __post_init__(self):
+        c = "TailRotorConfig."
+        for attr, unit in (("radius", "m"), ("omega", "rad/s"), ("lift_slope", "1/rad")):
+            _real(ConfigError, c + attr, getattr(self, attr), positive=True, unit=unit)
+        _real(ConfigError, c + "solidity", self.solidity, positive=True, hi=1.0)
+        _real(ConfigError, c + "cd0", self.cd0, nonnegative=True, hi=1.0)
+        _real(ConfigError, c + "twist", self.twist, lo=-math.pi / 4, hi=math.pi / 4, unit="rad")
+        _vector(ConfigError, c + "position", self.position, 3, unit="m")
+        if isinstance(self.thrust_sign, bool) or self.thrust_sign not in (1, -1):
+            raise ConfigError(f"{c}thrust_sign must be +1 or -1, got {self.thrust_sign!r}")
+        if self.position[0] == 0.0:
+            raise ConfigError(f"{c}position: a tail rotor at x = 0 has no yaw moment arm, got {self.position!r}")
+
+    @property
+    def tip_speed(self) -> float:
+        """Omega R [m/s]."""
+        return self.omega * self.radius
+
+    @property
+    def disk_area(self) -> float:
+        """Disk area pi R^2 [m^2]."""
+        return math.pi * self.radius ** 2
+
+
+@dataclass(frozen=True)
 class AircraftConfig:
     """A whole aircraft: rotors, mass properties, fuselage/empennage, propeller.
 
@@ -223,6 +284,12 @@ class AircraftConfig:
     (:mod:`aircraft.helicopter.mixing`): 0 is the articulated rule (lateral stick on
     the cos-term cyclic), pi/2 pairs the lateral stick with theta1s, as Eq. 7.19 does
     for a stiff hingeless rotor whose hub moment follows the blade lift directly.
+    ``fuselage_fx`` is the drag area along body x (drag ``1/2 rho f_x |V| u``);
+    ``fuselage_fz`` the cross-flow area (drag ``1/2 rho f_z |v_c| (v, w)`` with the
+    cross-flow speed ``|v_c| = sqrt(v^2 + w^2)``); ``fuselage_lift_area`` [m^2/rad]
+    the fuselage lift per angle of attack (``L = 1/2 rho (u^2 + w^2) S_L alpha``).
+    ``tail_rotor``: a single-rotor aircraft's anti-torque rotor (None: an idealised
+    yaw moment, ``HelicopterSettings.tail_rotor_yaw_per_rad``).
     """
 
     name: str
@@ -245,6 +312,8 @@ class AircraftConfig:
     trim_ct: tuple = ()
     omega_cruise: float | None = None
     control_phase: float = 0.0
+    fuselage_lift_area: float = 0.0
+    tail_rotor: TailRotorConfig | None = None
 
     def __post_init__(self):
         c = "AircraftConfig."
@@ -293,6 +362,14 @@ class AircraftConfig:
         if self.omega_cruise is not None:
             _real(ConfigError, c + "omega_cruise", self.omega_cruise, positive=True, unit="rad/s")
         _real(ConfigError, c + "control_phase", self.control_phase, lo=-math.pi, hi=math.pi, unit="rad")
+        _real(ConfigError, c + "fuselage_lift_area", self.fuselage_lift_area, nonnegative=True, unit="m^2/rad")
+        if self.tail_rotor is not None:
+            if not isinstance(self.tail_rotor, TailRotorConfig):
+                raise ConfigError(f"{c}tail_rotor must be a TailRotorConfig or None, got "
+                                  f"{type(self.tail_rotor).__name__}")
+            if len(self.rotors) != 1:
+                raise ConfigError(f"{c}tail_rotor: only a single-rotor aircraft has a tail rotor, "
+                                  f"this one has {len(self.rotors)} rotors")
 
     @property
     def weight(self) -> float:
@@ -341,7 +418,8 @@ ASSUMPTIONS = {
                         "(3) Izz also carries the two rotors' polar inertia, 8 I_b = 28,900, because the "
                         "rotor speed is held relative to the shaft (no rotor-speed state). "
                         "Sensitivity of the flap-body modes to Ixx: results/coaxial_hover_poles/.",
-    "coaxial.fuselage": "f_x 2.5 m^2, f_z 20 m^2 flat-plate areas (regression-model class).",
+    "coaxial.fuselage": "f_x 2.5 m^2 drag area along x, f_z 20 m^2 cross-flow (vertical and lateral) drag "
+                        "area (regression-model class); no fuselage lift (fuselage_lift_area 0).",
     "coaxial.tails": "horizontal tail 4.0 m^2 at 7.5 m aft; vertical tail 3.0 m^2 at 8.0 m aft.",
     "coaxial.propeller": "solidity 0.12, twist -30 deg, 9.5 m aft of the c.g.",
     "all.lift_slope": "5.73 /rad (2 pi corrected for thickness); stall at 12 deg.",
@@ -353,6 +431,8 @@ ASSUMPTIONS = {
     "uh60.control_phase": "pi/2 minus the rotor's classical flap lag (RotorConfig.flap_phase_lag): "
                           "4.6 deg, nearly the articulated rule (the Appendix does not give one).",
     "coaxial.control_phase": "90 deg: Eq. 7.19 pairs the lateral stick with theta1s for this hingeless rotor.",
+    "uh60.tail_rotor": "UH-60A-like: R 5.5 ft, 124.62 rad/s, solidity 0.1875, twist -18 deg, hub 9.5 m aft "
+                       "and 1.9 m above the c.g., thrust to starboard; no cant, no fin blockage.",
     "uh60.inertias": "UH-60A: Ixx 6,317, Iyy 52,216, Izz 49,889, Ixz 2,551 kg m^2 (GenHel values).",
 }
 
@@ -416,6 +496,7 @@ def uh60_single_rotor() -> AircraftConfig:
         mass=17150.0 * LB,
         Ixx=6317.0, Iyy=52216.0, Izz=49889.0, Ixz=2551.0,
         trim_ct=(0.0061,),
+        tail_rotor=TailRotorConfig(),
         # ASSUMPTIONS['uh60.control_phase']: follows the rotor's own flap lag
         control_phase=math.pi / 2 - rotor.flap_phase_lag(),
     )

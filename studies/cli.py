@@ -151,6 +151,9 @@ STUDIES = {s.command: s for s in (
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),
+    Study("trim-sweeps", "studies.trim_sweeps",
+          "both aircraft trimmed and linearised from hover to maximum speed: controls, attitudes, "
+          "power and eigenvalues against speed", 1.0, default_out="results/trim_sweeps"),
 )}
 # identification_demo is written by `main` as its stage 1; `results` does not rerun it
 

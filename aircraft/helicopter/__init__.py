@@ -3,16 +3,19 @@
 ::
 
     Helicopter(config, inflow) ── trim(condition) ──► TrimResult
-                               └─ linearize(trim) ──► control.StateSpace ─► modes(sys)
-                                                      ├─ coupling_numerator(sys, "p", "delta_lat", {...})
-                                                      ├─ classify_modes(sys) / flap_mode_damping(sys)
-                                                      └─ effective_derivative(sys, "p", "p", omega)
+                               ├─ linearize(trim) ──► control.StateSpace ─► modes(sys)
+                               │                      ├─ coupling_numerator(sys, "p", "delta_lat", {...})
+                               │                      ├─ classify_modes(sys) / flap_mode_damping(sys)
+                               │                      └─ effective_derivative(sys, "p", "p", omega)
+                               └─ sweep.trim_sweep(heli, speeds) ──► TrimSweep (table, eigenvalues, .plot())
     compare_bare_airframe({"Dynamic Climb": DynamicClimb(), ...}) ──► BareAirframeComparison
     ShaftFixedRotors(config, inflow) ── trim / run / run_linear  (rotor-level truth checks)
     tilt_coupling.py (not re-exported): TiltCoupledHelicopter / helicopter_for, which
         feed a TiltInflow the flapping states as tip-path-plane tilts
     control_phase.py (not re-exported): cyclic_moment_shares(sys, config) and
         derive_control_phase(sys, config), which cyclic acts on which axis
+    sweep.py (not re-exported): trim_sweep(heli, speeds), trims, linear models and
+        eigenvalues against speed, with figures
     hold.py (not re-exported): hold_states(sys, ["u", "v"]), states held at trim
         (a perfectly tight outer loop)
 """

@@ -123,6 +123,19 @@ def _layout(config):
     return tuple(r.direction for r in config.rotors), config.propeller is not None, config.control_phase
 
 
+def _pedal_sign(config):
+    """Sign of the tail-rotor control per right pedal (nose right).
+
+    A tail rotor thrusting along ``thrust_sign * y`` at ``x`` gives the yaw moment
+    ``x * thrust_sign * T``; right pedal must raise it. Without a tail rotor the
+    idealised yaw control is positive nose right.
+    """
+    tail = getattr(config, "tail_rotor", None)
+    if tail is None:
+        return 1.0
+    return float(np.sign(tail.position[0] * tail.thrust_sign))
+
+
 def mixing_matrix(config=None, k=None, control_phase=None):
     """``T`` with ``theta = T @ delta + offsets``: the inverse of Eq. 7.19's mixing.
 
@@ -143,7 +156,9 @@ def mixing_matrix(config=None, k=None, control_phase=None):
     numpy.ndarray
         ``(n_controls, n_pilot)``: rows in ``Helicopter.input_names`` order (per
         rotor ``theta0, theta1s, theta1c``, then ``theta_prop`` or the single
-        rotor's ``theta_tr``), columns in :func:`pilot_inputs` order.
+        rotor's ``theta_tr``), columns in :func:`pilot_inputs` order. Right pedal
+        (nose right) lowers the collective of a tail rotor aft of the c.g. that
+        thrusts to starboard.
 
     Examples
     --------
@@ -173,7 +188,7 @@ def mixing_matrix(config=None, k=None, control_phase=None):
         t[r0 + 1:r0 + 3, 1] = rot @ np.array([-g, 0.0])            # longitudinal
         t[r0 + 1:r0 + 3, 2] = rot @ np.array([0.0, -d * g])        # lateral
     if single:
-        t[3, 3] = 1.0 / k          # pedal -> tail-rotor control
+        t[3, 3] = _pedal_sign(config) / k          # pedal -> tail-rotor control
     elif propeller:
         t[3 * n, 4] = 1.0 / k
     return t

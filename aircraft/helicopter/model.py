@@ -4,8 +4,14 @@ State vector (named): body ``u v w p q r phi theta psi`` (Eq. 7.7, SI, body axes
 then per rotor the flap MBC ``beta0, beta1c, beta1s, betad`` and their rates
 (``*_dot``), then the inflow model's states.  Inputs: the rotor controls
 ``theta0_U, theta1s_U, theta1c_U, theta0_L, theta1s_L, theta1c_L, theta_prop``
-(single rotor: ``theta0, theta1s, theta1c`` plus ``theta_tr`` as an ideal yaw
-moment control, documented below).
+(single rotor: ``theta0, theta1s, theta1c`` plus ``theta_tr``, the tail rotor's
+collective at 3/4 radius [rad] when the configuration has a ``tail_rotor``,
+otherwise an idealised yaw moment control, ``HelicopterSettings``).
+
+Each rotor's shaft is tilted forward by its ``shaft_tilt`` ``i_s``: body vectors
+go to the shaft frame by a rotation about body y (shaft x axis
+``(cos i_s, 0, sin i_s)``, shaft z axis ``(-sin i_s, 0, cos i_s)``) and then to
+the rotor's own frame by the mirror of a clockwise rotor.
 
 Inflow models with wake-distortion inputs (``uses_flap_rates``) receive the
 full tip-path-plane rates of each rotor, ``beta1s_dot - p_r`` and
@@ -20,7 +26,7 @@ import numpy as np
 
 from ..configs import GRAVITY, AircraftConfig
 from ..inflow.base import InflowModel, RotorOperatingPoint, rotor_suffix
-from .airframe import fuselage_loads, propeller_loads
+from .airframe import fuselage_loads, propeller_loads, tail_rotor_loads
 from .rotor import FLAP_STATES, RotorModel
 
 __all__ = ["Helicopter", "HelicopterSettings", "BODY_STATES"]
@@ -34,7 +40,7 @@ class HelicopterSettings:
 
     n_span: int = 8
     n_average: int = 4
-    #: single rotor only: yaw moment [N m] per rad of ``theta_tr`` (an idealised tail rotor)
+    #: single rotor without a ``tail_rotor`` only: yaw moment [N m] per rad of ``theta_tr``
     tail_rotor_yaw_per_rad: float = 2.0e5
 
 
@@ -72,6 +78,22 @@ class Helicopter:
         inertia = np.array([[config.Ixx, 0, -config.Ixz], [0, config.Iyy, 0], [-config.Ixz, 0, config.Izz]])
         self.inertia = inertia
         self.inertia_inv = np.linalg.inv(inertia)
+        # body -> shaft rotation per rotor; None for an untilted shaft (kept exactly the identity)
+        self._shaft = []
+        for r in config.rotors:
+            i_s = r.shaft_tilt
+            self._shaft.append(None if i_s == 0.0 else np.array(
+                [[np.cos(i_s), 0.0, np.sin(i_s)], [0.0, 1.0, 0.0], [-np.sin(i_s), 0.0, np.cos(i_s)]]))
+
+    def _to_shaft(self, k, vec):
+        """Body-axes vector in rotor ``k``'s shaft frame."""
+        s = self._shaft[k]
+        return vec if s is None else s @ vec
+
+    def _from_shaft(self, k, vec):
+        """Shaft-frame vector of rotor ``k`` in body axes."""
+        s = self._shaft[k]
+        return vec if s is None else s.T @ vec
 
     @property
     def n_states(self):
@@ -81,9 +103,9 @@ class Helicopter:
         ops = []
         vel = x[0:3]
         rates = x[3:6]
-        for rm in self.rotors:
+        for k, rm in enumerate(self.rotors):
             cfg = rm.config
-            v_hub = vel + np.cross(rates, np.asarray(cfg.hub_position, float))
+            v_hub = self._to_shaft(k, vel + np.cross(rates, np.asarray(cfg.hub_position, float)))
             vt = cfg.tip_speed
             ops.append(RotorOperatingPoint(omega=cfg.omega, mu=float(np.hypot(v_hub[0], v_hub[1]) / vt),
                                            mu_z=float(-v_hub[2] / vt)))
@@ -114,12 +136,14 @@ class Helicopter:
             base = 9 + 8 * k
             flap, flap_rate = x[base:base + 4], x[base + 4:base + 8]
             hub = np.asarray(rc.hub_position, float)
-            v_hub = vel + np.cross(rates, hub)
+            v_hub = self._to_shaft(k, vel + np.cross(rates, hub))
+            rates_s = self._to_shaft(k, rates)
             ctrl = u[3 * k:3 * k + 3] if cfg.is_coaxial else u[0:3]
             out = rm.evaluate(flap, flap_rate, ctrl, lam[3 * k:3 * k + 3], mirror * v_hub,
-                              np.array([d * rates[0], rates[1], d * rates[2]]))
-            f_body = mirror * out["force"]
-            m_body = np.array([d * out["moment"][0], out["moment"][1], d * out["moment"][2]])
+                              np.array([d * rates_s[0], rates_s[1], d * rates_s[2]]))
+            f_body = self._from_shaft(k, mirror * out["force"])
+            m_body = self._from_shaft(k, np.array([d * out["moment"][0], out["moment"][1],
+                                                   d * out["moment"][2]]))
             force += f_body
             moment += m_body + np.cross(hub, f_body)
             xdot[base:base + 4] = flap_rate
@@ -135,6 +159,13 @@ class Helicopter:
             fp = np.array([thrust, 0.0, 0.0])
             force += fp
             moment += np.cross(pos, fp) + np.array([torque, 0.0, 0.0])
+        elif cfg.tail_rotor is not None:
+            tr = cfg.tail_rotor
+            pos = np.asarray(tr.position, float)
+            f_tr, power_tr = tail_rotor_loads(tr, u[3], vel + np.cross(rates, pos), cfg.rho)
+            force += f_tr
+            moment += np.cross(pos, f_tr)
+            extra["power_tr"] = power_tr
         else:
             moment[2] += self.settings.tail_rotor_yaw_per_rad * u[3]
         ff, mf = fuselage_loads(cfg, vel, rates)
@@ -154,7 +185,8 @@ class Helicopter:
         # blade inertial coupling with the body angular acceleration (see rotor.py)
         for k, rm in enumerate(self.rotors):
             d = rm.config.direction
-            acc_r = np.array([d * xdot[3], xdot[4], d * xdot[5]])
+            acc_s = self._to_shaft(k, xdot[3:6])
+            acc_r = np.array([d * acc_s[0], acc_s[1], d * acc_s[2]])
             base = 9 + 8 * k
             xdot[base + 4:base + 8] += rm.flap_acceleration_correction(acc_r)
         # full tip-path-plane rates (body rates included, Eq. 2.29; RotorModel.tpp_rates)

@@ -161,7 +161,13 @@ class RotorModel:
         up_ = -np.einsum("abkx,abx->abk", w_rel, n)
         th0, th1s, th1c = controls
         theta = th0 + cfg.twist * self.r[None, None, :] + (th1c * cp + th1s * sp)[..., None]
-        alpha = theta - np.arctan2(up_, ut)
+        # inflow angle; in reverse flow (ut < 0, air from the trailing edge) it is
+        # wrapped into +-90 deg, so a flat section at small incidence sees a small
+        # angle of attack, and lift_dir (normal to the relative wind, along -n
+        # there) gives the flat-plate normal force of the right sign
+        inflow_angle = np.arctan2(up_, ut)
+        inflow_angle = np.where(ut < 0.0, np.arctan2(-up_, -ut), inflow_angle)
+        alpha = theta - inflow_angle
         cl = cfg.lift_slope * np.clip(alpha, -cfg.stall_angle, cfg.stall_angle)
         u2 = ut ** 2 + up_ ** 2
         u = np.sqrt(u2)

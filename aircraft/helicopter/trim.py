@@ -3,9 +3,11 @@
 Hover: unknowns are the four pilot controls (collective, longitudinal, lateral,
 pedal), roll and pitch attitude, the flap MBC displacements and the inflow
 states; every acceleration, flap acceleration and inflow derivative is zero.
-Forward flight (speed > 0): the pitch attitude is set by the target rotor angle
-of attack (shaft normal to body x), and the propeller control replaces it as
-an unknown.  The coaxial's differential cyclics are fixed: zero longitudinal
+Forward flight (speed > 0) of the compound: the pitch attitude is set by the
+target rotor angle of attack (shaft normal to body x), and the propeller control
+replaces it as an unknown. A single-rotor aircraft keeps its pitch attitude as an
+unknown at every speed (``rotor_aoa`` is not used): the same 4 controls, 2
+attitudes, flap and inflow states balance the same equations from hover up.  The coaxial's differential cyclics are fixed: zero longitudinal
 difference and a chosen lateral difference (lift offset), as in §7.2.
 Solved with scipy's Levenberg-Marquardt then Newton polishing to |residual| <
 ``tol`` (scaled: body accelerations in SI, flap accelerations / Omega^2, inflow
@@ -52,7 +54,7 @@ class _BudgetExceeded(Exception):
 
 @dataclass(frozen=True)
 class TrimCondition:
-    """speed [m/s] (level flight), rotor_aoa [rad] (forward flight, shaft angle to the
+    """speed [m/s] (level flight), rotor_aoa [rad] (compound in forward flight, shaft angle to the
     flight path, positive nose up), lateral_cyclic_difference [rad]: the
     differential lateral cyclic held fixed at trim to set the lift offset (§7.2), paired
     with the aircraft's control phase like the lateral stick: positive moves each
@@ -105,6 +107,39 @@ def _controls(heli, pilot, condition):
     return u
 
 
+def _pedal_guess(cfg, ct, rc):
+    """Pedal of a hover trim estimate: tail-rotor thrust from the main rotor's momentum
+    torque (induced power with 15 % losses plus profile power), collective from
+    blade-element momentum theory at 3/4 radius, through the pedal sign of the mixing."""
+    from .mixing import mixing_matrix
+    tr = cfg.tail_rotor
+    cq = 1.15 * ct ** 1.5 / np.sqrt(2.0) + rc.solidity * rc.cd0 / 8
+    torque = cq * rc.thrust_scale(cfg.rho) * rc.radius
+    ct_tr = torque / abs(tr.position[0]) / (cfg.rho * tr.disk_area * tr.tip_speed ** 2)
+    theta_tr = 6 * ct_tr / (tr.solidity * tr.lift_slope) + 1.5 * np.sqrt(ct_tr / 2)
+    return theta_tr / mixing_matrix(cfg)[3, 3]
+
+
+def _start_from(heli, start, coax, forward, nrot, nin, size):
+    """Unknowns of the trim problem taken from an earlier trim of the same helicopter."""
+    if not isinstance(start, TrimResult) or start.helicopter is not heli:
+        raise TrimInputError("start must be a TrimResult of this same Helicopter, got "
+                             f"{type(start).__name__}")
+    z = list(start.pilot[:4])
+    if coax and forward:
+        z.append(start.pilot[4])
+    z.append(start.x[6])
+    if not (coax and forward):
+        z.append(start.x[7])
+    for k in range(nrot):
+        z += list(start.x[9 + 8 * k:9 + 8 * k + 4])
+    z += list(start.x[heli.n_rigid:heli.n_rigid + nin])
+    z = np.array(z, float)
+    if z.size != size:
+        raise TrimInputError(f"start has {z.size} trim unknowns, this trim {size}")
+    return z
+
+
 def _check_blade_loading(heli):
     """Refuse at once a weight no rotor of this aircraft can carry (C_T/sigma vs stall)."""
     share = heli.config.weight / len(heli.rotors)
@@ -122,7 +157,7 @@ def _check_blade_loading(heli):
 
 
 def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, max_nfev=None,
-         max_time=60.0) -> TrimResult:
+         max_time=60.0, start=None) -> TrimResult:
     """Trim ``heli`` at ``condition``; raise :class:`TrimError` naming the residuals if it fails.
 
     Parameters
@@ -141,6 +176,10 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     max_time : float or None
         Wall-clock budget [s] of the whole trim; None: only the evaluation
         budgets bound it.
+    start : TrimResult, optional
+        A trim of the same helicopter to start from (its controls, attitudes,
+        flap and inflow states), e.g. the neighbouring speed of a sweep; default:
+        a momentum-theory estimate.
 
     Raises
     ------
@@ -201,6 +240,8 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     pilot0 = np.array([th0, 0.0, 0.0, 0.0, 0.0]) if coax else np.array([th0, 0.0, 0.0, 0.0])
     if coax:
         pilot0[0] = th0    # delta_col = K (th0 + th0) = th0 for K = 0.5
+    elif cfg.tail_rotor is not None:
+        pilot0[3] = _pedal_guess(cfg, ct0, rc)
     att0 = np.array([0.0, 0.0])
 
     def unpack(z):
@@ -217,7 +258,7 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
             i = 4
         phi = z[i]
         i += 1
-        if forward:
+        if forward and coax:
             theta = condition.rotor_aoa
         else:
             theta = z[i]
@@ -273,12 +314,14 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     if coax and forward:
         z0.append(0.1)
     z0.append(att0[0])
-    if not forward:
+    if not (forward and coax):
         z0.append(att0[1])
     for k in range(nrot):
         z0 += [0.02, 0.0, 0.0, 0.0]
     z0 += list(xin0)
     z0 = np.array(z0, float)
+    if start is not None:
+        z0 = _start_from(heli, start, coax, forward, nrot, nin, z0.size)
     if len(residual(z0)) != len(z0):
         raise TrimError(f"trim problem is not square: {len(residual(z0))} equations, {len(z0)} unknowns")
     names = ["udot", "vdot", "wdot", "pdot", "qdot", "rdot"] + \

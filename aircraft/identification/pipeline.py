@@ -120,7 +120,7 @@ def identification_hash(config, condition, structure, settings=None, *, ct=None,
     ----------
     config : aircraft.AircraftConfig
         Rotor(s) identified (hashed by its ``repr`` without the fields the wake never sees:
-        the pilot mixing's ``control_phase``).
+        the pilot mixing's ``control_phase``, the fuselage lift and the tail rotor).
     condition : aircraft.wake.FlightCondition
         Flight condition (a dataclass, hashed field by field).
     structure : InflowStructure or str
@@ -157,7 +157,7 @@ def identification_hash(config, condition, structure, settings=None, *, ct=None,
 
 
 #: aircraft fields the wake never sees (the pilot mixing): left out of the identification hash
-_NOT_WAKE_INPUTS = ("control_phase",)
+_NOT_WAKE_INPUTS = ("control_phase", "fuselage_lift_area", "tail_rotor")
 
 
 def _wake_repr(config):

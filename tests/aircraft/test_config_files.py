@@ -14,8 +14,8 @@ import pytest
 import aircraft
 from aircraft.config_files import (ConfigFileError, FORMAT_VERSION, _schema, load_shipped_aircraft,
                                    read_aircraft, shipped_aircraft, write_aircraft)
-from aircraft.configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, coaxial_compound,
-                              uh60_single_rotor)
+from aircraft.configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, TailRotorConfig,
+                              coaxial_compound, uh60_single_rotor)
 
 FACTORIES = {"coaxial_compound": coaxial_compound, "uh60_single_rotor": uh60_single_rotor}
 
@@ -89,6 +89,22 @@ def test_round_trip_of_awkward_values(tmp_path):
     assert back.rotors[0].hub_position == (0.0, 1e-300, -2.0)
 
 
+def test_round_trip_of_a_tail_rotor_and_fuselage_lift(tmp_path):
+    tail = TailRotorConfig(radius=1 / 3, omega=100.0 + 1e-13, solidity=0.2, twist=-math.pi / 11,
+                           position=(-7, 0.25, -1.5), thrust_sign=-1)
+    config = dataclasses.replace(uh60_single_rotor(), tail_rotor=tail, fuselage_lift_area=0.1 + 0.2)
+    path = write_aircraft(config, tmp_path / "t.toml")
+    assert read_aircraft(path) == config
+    # degrees accepted as for every angle; a tail rotor on a coaxial is refused, naming the field
+    text = path.read_text().replace(f"twist       = {-math.pi / 11!r}", "twist_deg = -10.0")
+    assert read_aircraft(_write(tmp_path, text, "d.toml")).tail_rotor.twist == pytest.approx(math.radians(-10.0))
+    coax = write_aircraft(coaxial_compound(), tmp_path / "c.toml").read_text()
+    with pytest.raises(ConfigFileError, match="tail_rotor: only a single-rotor aircraft"):
+        read_aircraft(_write(tmp_path, coax + "\n[tail_rotor]\nradius = 1.0\n", "e.toml"))
+    with pytest.raises(ConfigFileError, match=r"tail_rotor: TailRotorConfig.thrust_sign must be \+1 or -1, got 2"):
+        read_aircraft(_write(tmp_path, path.read_text().replace("thrust_sign = -1", "thrust_sign = 2"), "f.toml"))
+
+
 def test_the_file_says_its_units_and_every_field(tmp_path):
     text = write_aircraft(coaxial_compound(), tmp_path / "c.toml").read_text()
     assert "SI" in text.splitlines()[2] and "RADIANS" in text
@@ -104,10 +120,14 @@ def test_the_file_says_its_units_and_every_field(tmp_path):
     text = write_aircraft(uh60_single_rotor(), tmp_path / "u.toml").read_text()
     assert re.search(r"^# flap_inertia not set", text, re.M)
     assert "[propeller]" not in text.replace("no [propeller] table", "")
+    # the single rotor's tail rotor is its own table with every field
+    assert re.search(r"^\[tail_rotor\]", text, re.M)
+    for f in dataclasses.fields(TailRotorConfig):
+        assert re.search(rf"^{f.name}\b", text.split("[tail_rotor]")[1], re.M), f.name
 
 
 def test_the_schema_covers_every_dataclass_field():
-    for cls in (AircraftConfig, RotorConfig, PropellerConfig):
+    for cls in (AircraftConfig, RotorConfig, PropellerConfig, TailRotorConfig):
         assert list(_schema(cls)) == [f.name for f in dataclasses.fields(cls)]
 
 

@@ -1,0 +1,70 @@
+"""Trim sweeps, hover to maximum speed: controls, attitudes, power and eigenvalues.
+
+Both aircraft are trimmed in level flight at each speed and linearised there
+(:func:`aircraft.helicopter.sweep.trim_sweep`):
+
+* ``uh60``: the UH-60-like single rotor with Pitt-Peters inflow and its tail
+  rotor, hover to 80 m/s;
+* ``coaxial_dynamic_climb``: the coaxial compound at its cruise rotor speed with
+  the Dynamic Climb inflow of the main job, hover to 110 m/s (the propeller trims
+  the speed at a rotor angle of attack of 2 deg);
+* ``coaxial_isolated``: the same aircraft with isolated-rotor inflow (no
+  interference), the model the forward-flight study compares against.
+
+A speed whose trim does not converge is a row with ``converged = False`` and the
+solver's message, so the tables show where a model has no trim.
+
+Writes ``results/trim_sweeps/``: per case ``trims_<case>.csv`` (controls [deg],
+attitudes [deg], power [kW], residual), ``eigenvalues_<case>.csv`` (poles with
+their dominant states), ``trims_<case>.png`` and ``eigenvalues_<case>.png``.
+
+Run: ``python -m studies.trim_sweeps``
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from aircraft import coaxial_compound, uh60_single_rotor
+from aircraft.helicopter import Helicopter
+from aircraft.helicopter.sweep import trim_sweep
+from aircraft.inflow import DynamicClimb, IsolatedRotors, PittPeters
+
+__all__ = ["CASES", "main"]
+
+#: case -> (title, aircraft factory, inflow factory, speeds [m/s])
+CASES = {
+    "uh60": ("UH-60-like single rotor, Pitt-Peters inflow", uh60_single_rotor, PittPeters,
+             np.arange(0.0, 80.1, 5.0)),
+    "coaxial_dynamic_climb": ("coaxial compound (cruise rotor speed), Dynamic Climb inflow",
+                              lambda: coaxial_compound(cruise=True), DynamicClimb, np.arange(0.0, 110.1, 5.0)),
+    "coaxial_isolated": ("coaxial compound (cruise rotor speed), isolated-rotor inflow",
+                         lambda: coaxial_compound(cruise=True), IsolatedRotors, np.arange(0.0, 110.1, 5.0)),
+}
+
+
+def main(out_dir="results/trim_sweeps"):
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    pd.set_option("display.width", 200)
+    for case, (title, aircraft, inflow, speeds) in CASES.items():
+        sweep = trim_sweep(Helicopter(aircraft(), inflow()), speeds)
+        sweep.table.to_csv(out / f"trims_{case}.csv", index=False)
+        sweep.eigenvalues.drop(columns=["pole"]).to_csv(out / f"eigenvalues_{case}.csv", index=False)
+        sweep.plot(title).savefig(out / f"trims_{case}.png", dpi=120)
+        sweep.plot_eigenvalues(title).savefig(out / f"eigenvalues_{case}.png", dpi=120)
+        t = sweep.table
+        print(f"[{case}] {title}: {int(t['converged'].sum())}/{len(t)} speeds trimmed")
+        cols = [c for c in ("speed", "delta_col", "delta_lon", "delta_lat", "delta_ped", "delta_prop", "phi",
+                            "theta", "power_total") if c in t.columns]
+        print(t[t["converged"]][cols].to_string(index=False, float_format=lambda v: f"{v:.2f}"))
+        failed = t[~t["converged"]]["speed"].tolist()
+        if failed:
+            print(f"  no trim at {failed} m/s")
+    return out
+
+
+if __name__ == "__main__":
+    main()
