@@ -11,14 +11,15 @@ Also the coaxial's power against twice the single rotor's at half its thrust
 runs beside momentum theory's bounds.
 
 Writes ``results/harrington_hover_power/``: ``points.csv`` (each measured point
-with our C_Q at its C_T and the error), ``curves.csv`` (our trimmed points),
+with our C_Q at its C_T and the error), ``points_classical_blade.csv`` (the same with the classical blade, constant
+``cd0`` = 0.010, for two of the cases), ``curves.csv`` (our trimmed points),
 ``faired.csv`` (the report's faired curves with ours at the same C_T),
 ``interference.csv`` (coaxial against twice the single rotor, ours and measured),
 ``kappa_int.csv`` (our induced-power interference beside momentum theory),
 ``hover_power.png``.
 
-Run: ``rotorwake harrington-hover-power`` (about 5 minutes on one core at the
-default wake resolution; ``--small``: a coarse wake and three thrusts, for the tests).
+Run: ``rotorwake harrington-hover-power`` (about 7 minutes on one core at the
+default wake resolution, C_T and C_Q averaged over six revolutions after each trim; ``--small``: a coarse wake and three thrusts, for the tests).
 """
 from __future__ import annotations
 
@@ -36,6 +37,8 @@ from studies.analysis.harrington import (INVISCID_BLADE, MOMENTUM_BOUNDS, errors
 
 #: (configuration, tip speed [ft/s]) of the report's tests
 CASES = (("single", 262.0), ("single", 392.0), ("coaxial", 327.0), ("coaxial", 392.0))
+#: the cases also run with the classical blade (constant cd0 = 0.010, no thickness, no compressibility)
+BASELINE_CASES = (("single", 262.0), ("coaxial", 392.0))
 
 
 def _grids(small):
@@ -45,27 +48,39 @@ def _grids(small):
 
 
 def run(out_dir="results/harrington_hover_power", small=False):
-    settings = (WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=2.0, n_elements=6,
-                             far_wake_revolutions=4.0) if small else WakeSettings())
+    settings = (WakeSettings(azimuth_step=math.radians(30.0), wake_revolutions=1.0, n_elements=4,
+                             far_wake_revolutions=2.0) if small else WakeSettings())
+    revs = 1 if small else 6
     grids = _grids(small)
     points, faired = measured_points(), faired_curves()
     curves, errors, against_faired = [], [], []
     for kind, vt in CASES:
-        ours = hover_power(harrington_rotor2(vt, kind == "coaxial"), grids[kind], settings, progress=print)
-        curves.append(ours.assign(configuration=kind, tip_speed_ft_s=vt))
+        ours = hover_power(harrington_rotor2(vt, kind == "coaxial"), grids[kind], settings, progress=print,
+                           average_revs=revs)
+        curves.append(ours.assign(configuration=kind, tip_speed_ft_s=vt, blade="real"))
         mine = points[(points.configuration.str.startswith(kind)) & (points.tip_speed_ft_s == vt)]
         errors.append(errors_at_points(ours, mine))
         f = faired[faired.configuration == kind]
         against_faired.append(errors_at_points(ours, f[["CT", "CQ"]]).assign(configuration=kind,
                                                                              tip_speed_ft_s=vt))
-    curves = pd.concat(curves, ignore_index=True)
     errors = pd.concat(errors, ignore_index=True)
     against_faired = pd.concat(against_faired, ignore_index=True)
-    ratio = interference(curves[(curves.configuration == "coaxial") & (curves.tip_speed_ft_s == 392.0)],
-                         curves[(curves.configuration == "single") & (curves.tip_speed_ft_s == 392.0)], faired)
-    coax_i = hover_power(harrington_rotor2(392.0, True, INVISCID_BLADE), grids["coaxial"][1::2][:4], settings)
+    baseline = []
+    for kind, vt in BASELINE_CASES:
+        ours = hover_power(harrington_rotor2(vt, kind == "coaxial", blade=None), grids[kind], settings,
+                           average_revs=revs)
+        curves.append(ours.assign(configuration=kind, tip_speed_ft_s=vt, blade="classical"))
+        mine = points[(points.configuration.str.startswith(kind)) & (points.tip_speed_ft_s == vt)]
+        baseline.append(errors_at_points(ours, mine))
+    baseline = pd.concat(baseline, ignore_index=True)
+    curves = pd.concat(curves, ignore_index=True)
+    real = curves[curves.blade == "real"]
+    ratio = interference(real[(real.configuration == "coaxial") & (real.tip_speed_ft_s == 392.0)],
+                         real[(real.configuration == "single") & (real.tip_speed_ft_s == 392.0)], faired)
+    coax_i = hover_power(harrington_rotor2(392.0, True, INVISCID_BLADE), grids["coaxial"][1::2][:4], settings,
+                         average_revs=revs)
     single_i = hover_power(harrington_rotor2(392.0, False, INVISCID_BLADE),
-                           np.arange(0.0005, 0.00401, 0.0005), settings)
+                           np.arange(0.0005, 0.00401, 0.0005), settings, average_revs=revs)
     kappa = induced_interference(coax_i, single_i)
     for name, value in MOMENTUM_BOUNDS.items():
         kappa[f"momentum: {name}"] = value
@@ -73,6 +88,7 @@ def run(out_dir="results/harrington_hover_power", small=False):
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     errors.to_csv(out / "points.csv", index=False)
+    baseline.to_csv(out / "points_classical_blade.csv", index=False)
     curves.to_csv(out / "curves.csv", index=False)
     against_faired.to_csv(out / "faired.csv", index=False)
     ratio.to_csv(out / "interference.csv", index=False)
@@ -85,6 +101,9 @@ def run(out_dir="results/harrington_hover_power", small=False):
         index=False, float_format=lambda v: f"{v:.5g}"))
     summary = band.groupby(["configuration", "tip_speed_ft_s"]).error.agg(["min", "max", "mean"])
     print(summary.to_string(float_format=lambda v: f"{v:+.3f}"))
+    print("the same with the classical blade (constant chord, cd0 = 0.010):")
+    print(baseline[baseline.in_band].groupby(["configuration", "tip_speed_ft_s"]).error.agg(["min", "max", "mean"])
+          .to_string(float_format=lambda v: f"{v:+.3f}"))
     print("\ncoaxial C_Q / (2 x single C_Q at half the thrust), 392 ft/s:")
     print(ratio.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
     print("\nour induced-power interference factor (drag-free sections), 392 ft/s:")
@@ -101,10 +120,15 @@ def _figure(curves, points, faired, errors):
         f = faired[faired.configuration == kind]
         ax.plot(f.CT, f.CQ, "k--", lw=1, label="measured, faired")
         for vt in sorted(curves[curves.configuration == kind].tip_speed_ft_s.unique()):
-            c = curves[(curves.configuration == kind) & (curves.tip_speed_ft_s == vt)].sort_values("CT")
+            c = curves[(curves.configuration == kind) & (curves.tip_speed_ft_s == vt)
+                       & (curves.blade == "real")].sort_values("CT")
             p = points[points.configuration.str.startswith(kind) & (points.tip_speed_ft_s == vt)]
             ax.plot(c.CT, c.CQ, "-", color=colours[vt], label=f"ours, {vt:g} ft/s")
             ax.plot(p.CT, p.CQ, "o", mfc="none", color=colours[vt], label=f"measured, {vt:g} ft/s")
+            b = curves[(curves.configuration == kind) & (curves.tip_speed_ft_s == vt)
+                       & (curves.blade == "classical")].sort_values("CT")
+            if len(b):
+                ax.plot(b.CT, b.CQ, ":", color=colours[vt], label=f"classical blade, {vt:g} ft/s")
         ax.axvspan(0.002, 0.006, color="0.92", zorder=0)
         ax.set(xlabel="C_T", ylabel="C_Q", title=f"{kind} rotor (totals on one disc)")
         ax.legend(fontsize=7)

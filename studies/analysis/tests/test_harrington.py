@@ -65,3 +65,18 @@ def test_induced_interference_by_hand():
     assert kappa == pytest.approx(1.3e-4 / ((0.0022 ** 1.5 + 0.0018 ** 1.5) / math.sqrt(2.0)), rel=1e-3)
     # the coplanar bound: total thrust on one disc against two halves in isolation
     assert MOMENTUM_BOUNDS["rotors in one plane"] == pytest.approx(2 ** 1.5 / 2)
+
+
+def test_the_study_runs_small_and_writes_its_files(tmp_path):
+    # a coarse wake and three thrusts: the plumbing end to end (numbers not judged)
+    import subprocess
+    import sys
+    done = subprocess.run([sys.executable, "-m", "studies.harrington_hover_power", "--small", "--out",
+                           str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    for name in ("points.csv", "points_classical_blade.csv", "curves.csv", "faired.csv", "interference.csv",
+                 "kappa_int.csv", "hover_power.png"):
+        assert (tmp_path / name).is_file(), name
+    pts = pd.read_csv(tmp_path / "points.csv")
+    assert len(pts) == len(measured_points()) and {"CQ_ours", "error", "in_band"} <= set(pts.columns)
+    assert set(pd.read_csv(tmp_path / "curves.csv").blade) == {"real", "classical"}
