@@ -27,7 +27,7 @@ def test_configuration_follows_the_report_geometry():
 
 def test_measured_data_are_the_digitised_points_and_curves():
     pts = measured_points()
-    # README: coaxial 8 + 12 points, single 12 + 2
+    # the digitised data: coaxial 8 + 12 points, single 12 + 2
     assert pts.groupby(["configuration", "tip_speed_ft_s"]).size().to_dict() == {
         ("coaxial", 327): 12, ("coaxial", 392): 8, ("single_lower", 262): 12, ("single_lower", 392): 2}
     assert set(faired_curves().configuration) == {"coaxial", "single"}
