@@ -35,6 +35,11 @@ Rules:
   and in each rotor ``name``, ``radius``, ``omega``, ``n_blades``, ``chord``,
   ``twist``, ``root_cutout``) are required. ``None`` (``flap_inertia``,
   ``omega_cruise``, no propeller) is written as an absent key or table.
+* A rotor's real blade (:class:`~aircraft.blade.BladeModel`) is a ``[rotors.blade]``
+  table below its ``[[rotors]]`` table (``stations``, ``chord``, ``twist``,
+  ``thickness`` arrays, ``compressibility``, ``tip_loss``), with a tabulated polar
+  in ``[rotors.blade.polar]`` (``alpha``, ``cl``, ``cd``); no table: the classical
+  blade.
 * ``format_version`` is optional; if given it must be 1.
 * The writer writes floats with :func:`repr`, so a file read back gives a
   configuration equal to the one written, field for field and bit for bit.
@@ -66,6 +71,7 @@ try:
 except ModuleNotFoundError:  # Python 3.10: the same parser as the tomli package
     import tomli as _toml
 
+from .blade import BladeModel
 from .configs import AircraftConfig, ConfigError, PropellerConfig, RotorConfig, TailRotorConfig
 
 __all__ = ["ConfigFileError", "FORMAT_VERSION", "write_aircraft", "read_aircraft", "shipped_aircraft",
@@ -106,6 +112,7 @@ _ROTOR = {
     "hub_position": ("vector", "m, body axes from the c.g.: x fwd, y stbd, z down"),
     "shaft_tilt": ("float", "rad, forward"),
     "flap_inertia": ("optional float", "kg m^2, one blade about the hinge"),
+    "blade": ("blade", "a [rotors.blade] table: aircraft.blade.BladeModel"),
 }
 _PROPELLER = {
     "radius": ("float", "m"),
@@ -158,6 +165,7 @@ _TABLES = ("rotors", "propeller", "tail_rotor")
 _NOT_SET = {
     "flap_inertia": "not set (None): a uniform blade of blade_mass, m L^2 / 3",
     "omega_cruise": "not set (None): no separate cruise rotor speed",
+    "blade": "not set (None): constant chord, linear twist, lift_slope and cd0 (no [rotors.blade] table)",
 }
 _HEADER = """\
 # Aircraft configuration for rotorwake-id: aircraft.configs.AircraftConfig as TOML.
@@ -218,7 +226,7 @@ def _toml_lines(obj, owner):
     rows = []
     for field, (kind, unit) in _schema(type(obj)).items():
         value = getattr(obj, field)
-        if kind in _TABLES:
+        if kind in _TABLES or (kind == "blade" and value is not None):
             continue
         if value is None:
             rows.append((f"# {field}", "", _NOT_SET.get(field, "not set (None)")))
@@ -248,6 +256,26 @@ def _toml_lines(obj, owner):
     return lines
 
 
+def _toml_plain(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_float(v) for v in value) + "]"
+    return _toml_float(value)
+
+
+def _blade_lines(blade, k):
+    """The ``[rotors.blade]`` (and ``[rotors.blade.polar]``) tables of rotor ``k``."""
+    data = blade.to_dict()
+    polar = data.pop("polar", None)
+    lines = ["", f"[rotors.blade]  # rotors[{k}].blade: r/R stations, chord m, twist rad, thickness t/c"]
+    lines += [f"{key} = {_toml_plain(v)}" for key, v in data.items()]
+    if polar is not None:
+        lines += ["", f"[rotors.blade.polar]  # rotors[{k}].blade.polar: alpha rad, cl, cd"]
+        lines += [f"{key} = {_toml_plain(v)}" for key, v in polar.items()]
+    return lines
+
+
 def _to_toml(config, header=None):
     if not isinstance(config, AircraftConfig):
         raise TypeError(f"write_aircraft needs an aircraft.configs.AircraftConfig, got {type(config).__name__}")
@@ -258,6 +286,8 @@ def _to_toml(config, header=None):
     lines += _toml_lines(config, "AircraftConfig.")
     for k, rotor in enumerate(config.rotors):
         lines += ["", f"[[rotors]]  # rotors[{k}]"] + _toml_lines(rotor, f"rotors[{k}].")
+        if rotor.blade is not None:
+            lines += _blade_lines(rotor.blade, k)
     if config.propeller is None:
         lines += ["", "# no propeller (no [propeller] table)"]
     else:
@@ -360,6 +390,11 @@ class _Reader:
                 raise self.error(f"{where} must be an array of numbers [{unit.split(',')[0]}], "
                                  f"e.g. [0.0, 0.0, -2.0], got {_describe(value)}")
             return tuple(self.number(f"{where}[{k}]", v, unit) for k, v in enumerate(value))
+        if kind == "blade":
+            try:
+                return BladeModel.from_dict(value)
+            except (TypeError, ValueError) as err:
+                raise self.error(f"{where}: {err}") from err
         return self.number(where, value, unit)   # float, optional float
 
     def fields(self, cls, table, where):

@@ -20,6 +20,8 @@ from dataclasses import dataclass, field, replace
 import math
 
 from ._validation import integer as _integer, real as _real, vector as _vector
+from .blade import BladeModel
+from .provenance import HASHED_IF_SET
 
 __all__ = [
     "ConfigError", "FT", "LB", "RHO_SEA_LEVEL", "GRAVITY",
@@ -85,6 +87,11 @@ class RotorConfig:
     flap_inertia : float or None
         Blade flap inertia about the hinge [kg m^2]; None: uniform blade of
         ``blade_mass`` (m L^2 / 3).
+    blade : aircraft.blade.BladeModel or None
+        Real blade: chord and twist against radius, section polar, tip loss.
+        None (default): the constant ``chord``, linear ``twist``, ``lift_slope``
+        and ``cd0`` above.  With a chord table, ``chord`` stays the equivalent
+        (thrust-weighted) chord of the solidity and of the trim's first guesses.
     """
 
     name: str
@@ -105,9 +112,13 @@ class RotorConfig:
     hub_position: tuple = (0.0, 0.0, -2.0)
     shaft_tilt: float = 0.0
     flap_inertia: float | None = None
+    # added after the recipe hashes were fixed: hashed only when set (provenance.HASHED_IF_SET)
+    blade: BladeModel | None = field(default=None, metadata=HASHED_IF_SET)
 
     def __post_init__(self):
         c = "RotorConfig."
+        if self.blade is not None and not isinstance(self.blade, BladeModel):
+            raise ConfigError(f"{c}blade must be an aircraft.blade.BladeModel or None, got {self.blade!r}")
         if not isinstance(self.name, str):
             raise ConfigError(f"{c}name must be a string (\"U\", \"L\" or \"\"), got {self.name!r}")
         if self.flap_inertia is not None:

@@ -148,6 +148,10 @@ STUDIES = {s.command: s for s in (
           "which cyclic each stick drives (control phase), 100/200 kt lift-offset trims, case A against the "
           "rotor assumptions (flap frequency, Lock number, control phase)", 6.0,
           default_out="results/roll_design_sensitivity"),
+    Study("harrington-hover-power", "studies.harrington_hover_power",
+          "hover power of a full-scale coaxial rotor and its lower rotor alone (Harrington, NACA TN-2318) "
+          "with real blades, ours against the measured", 7.0,
+          default_out="results/harrington_hover_power"),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),

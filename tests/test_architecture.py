@@ -4,7 +4,7 @@ The project's imports are read with :mod:`ast` (nothing is imported). Each modul
 belongs to one *unit*: ``flightid``, ``aircraft.configs``, ``aircraft.wake``,
 ``aircraft.inflow``, ``aircraft.helicopter``, ``aircraft.identification``, the
 ``aircraft`` package face, its private leaf ``aircraft._validation``,
-``aircraft.provenance``, ``controllers`` and ``studies``. An import inside a
+``aircraft.provenance``, ``aircraft.blade`` (real blades, a leaf), ``controllers`` and ``studies``. An import inside a
 function (indented) is *lazy*: it runs only when the function does. A name taken
 from a package face (``from aircraft.inflow import X``) counts as an import of the
 module that defines ``X``.
@@ -28,7 +28,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = ROOT / "docs" / "architecture.rst"
 TOPS = ("flightid", "aircraft", "controllers", "studies")
-UNITS = ("flightid", "aircraft._validation", "aircraft.provenance", "aircraft.configs", "aircraft.wake",
+UNITS = ("flightid", "aircraft._validation", "aircraft.provenance", "aircraft.blade", "aircraft.configs", "aircraft.wake",
          "aircraft.inflow", "aircraft.helicopter", "aircraft.identification", "aircraft", "controllers",
          "studies")
 
@@ -171,7 +171,8 @@ def test_no_module_circle_even_through_lazy_imports():
 
 
 #: The layers, lowest first: a unit imports only units of a lower layer (or its own).
-LAYERS = {"flightid": 0, "aircraft._validation": 1, "aircraft.provenance": 1, "aircraft.configs": 2,
+LAYERS = {"flightid": 0, "aircraft._validation": 1, "aircraft.provenance": 1, "aircraft.blade": 1,
+          "aircraft.configs": 2,
           "aircraft.inflow": 3, "controllers": 3, "aircraft.wake": 4, "aircraft.helicopter": 4,
           "aircraft.identification": 5, "aircraft": 6, "studies": 7}
 

@@ -52,8 +52,13 @@ def solve_blades(wake):
         vrel = wake.v_inf[None, None, :] - vblade
         ut_ext.append(-(vrel * et[:, None, :]).sum(-1).ravel())
         up_ext.append(-(vrel * normal[:, None, :]).sum(-1).ravel())
-        kcoef.append(np.full(rot.nb * ne, 0.5 * rot.chord * rot.a))
-        th = wake._controls_at(rot, psib)[:, None] + rot.twist * (rot.r[None, :] - 0.75)
+        if rot.sections is None:
+            kcoef.append(np.full(rot.nb * ne, 0.5 * rot.chord * rot.a))
+            th = wake._controls_at(rot, psib)[:, None] + rot.twist * (rot.r[None, :] - 0.75)
+        else:   # real blade: chord, pitch, lift slope and tip loss per element
+            sec = rot.sections
+            kcoef.append(np.tile(0.5 * sec.chord * sec.lift_slope * sec.lift_fraction, rot.nb))
+            th = wake._controls_at(rot, psib)[:, None] + sec.pitch[None, :]
         theta.append(th.ravel())
         psis.append(psib)
     P = np.concatenate(cols)
@@ -75,8 +80,11 @@ def solve_blades(wake):
     gam = np.linalg.solve(mat, rhs)
     up_tot = up - infl_n @ gam
     alpha = th - up_tot / np.where(active, ut, 1.0)
-    alpha_c = np.clip(alpha, -wake.rotors[0].stall, wake.rotors[0].stall)
-    gam = np.where(active, k * alpha_c * ut, 0.0)
+    if all(rot.sections is None for rot in wake.rotors):
+        alpha_c = np.clip(alpha, -wake.rotors[0].stall, wake.rotors[0].stall)
+        gam = np.where(active, k * alpha_c * ut, 0.0)
+    else:
+        gam = _section_circulation(wake, alpha, ut, k, active)
     if not np.all(np.isfinite(gam)):
         raise WakeDivergedError(f"non-finite bound circulation at t = {wake.t:.3f} s")
     v_att = np.einsum("psk,s->pk", infl, gmap @ gam)
@@ -91,8 +99,14 @@ def solve_blades(wake):
         UT = ut[sl].reshape(rot.nb, ne)
         UP = up_tot[sl].reshape(rot.nb, ne)
         dL = wake.rho * G * UT * rot.dr[None, :] * rot.R          # along n
-        drag = (wake.rho * G * UP + 0.5 * wake.rho * (UT ** 2 + UP ** 2) * rot.chord * rot.cd0
-                * active[sl].reshape(rot.nb, ne)) * rot.dr[None, :] * rot.R
+        if rot.sections is None:   # the classical blade (kept as written: same rounding)
+            drag = (wake.rho * G * UP + 0.5 * wake.rho * (UT ** 2 + UP ** 2) * rot.chord * rot.cd0
+                    * active[sl].reshape(rot.nb, ne)) * rot.dr[None, :] * rot.R
+        else:
+            sec = rot.sections
+            cd = sec.drag(alpha[sl].reshape(rot.nb, ne), rot.cd0)
+            drag = (wake.rho * G * UP + 0.5 * wake.rho * (UT ** 2 + UP ** 2) * sec.chord * cd
+                    * active[sl].reshape(rot.nb, ne)) * rot.dr[None, :] * rot.R
         cb = np.cos(wake.beta[ir])[:, None]
         dT = dL * cb
         ct, cl, cm, cq = blade_sum_loads(dT, drag, rot.r, psis[ir], rot.scale)
@@ -111,6 +125,27 @@ def solve_blades(wake):
                              / (rot.r * rot.dr).sum())
     wake._last = out
     return out
+
+
+def _section_circulation(wake, alpha, ut, k, active):
+    """Bound circulation Gamma = c c_l(alpha) U_T / 2 per panel [m^2/s], rotor by rotor.
+
+    A classical rotor keeps its linear lift clipped at the stall angle; a real
+    blade takes c_l from its section polar (and lifts only inboard of its tip loss).
+    """
+    ne = wake.settings.n_elements
+    gam = np.zeros_like(alpha)
+    p0 = 0
+    for rot in wake.rotors:
+        sl = slice(p0, p0 + rot.nb * ne)
+        p0 += rot.nb * ne
+        if rot.sections is None:
+            gam[sl] = k[sl] * np.clip(alpha[sl], -wake.rotors[0].stall, wake.rotors[0].stall) * ut[sl]
+        else:
+            sec = rot.sections
+            cl = sec.lift(alpha[sl].reshape(rot.nb, ne)) * sec.lift_fraction
+            gam[sl] = (0.5 * sec.chord * cl).ravel() * ut[sl]
+    return np.where(active, gam, 0.0)
 
 
 def advance_blades(wake):

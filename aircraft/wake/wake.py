@@ -67,6 +67,9 @@ class _Rotor:
     r: np.ndarray
     dr: np.ndarray
     scale: float
+    #: the real blade evaluated at the elements (aircraft.blade.BladeSections), or
+    #: None for the classical blade (constant chord, linear twist, constant cd0)
+    sections: object = None
 
 
 class FreeVortexWake:
@@ -135,6 +138,12 @@ class FreeVortexWake:
                 cd0=rc.cd0, stall=rc.stall_angle, nu2=nu2, inertia=rc.blade_flap_inertia,
                 hub=hub, r_edge=r_edge, r=0.5 * (r_edge[1:] + r_edge[:-1]),
                 dr=np.diff(r_edge), scale=rc.thrust_scale(config.rho)))
+            if rc.blade is not None:
+                rot = self.rotors[-1]
+                rot.sections = rc.blade.sections(
+                    rot.r, chord=rc.chord, twist=rc.twist, lift_slope=rc.lift_slope,
+                    stall_angle=rc.stall_angle, omega=rc.omega, radius=rc.radius, r_edge=r_edge,
+                    nu=s.kinematic_viscosity)
         self.rho = config.rho
         v = self.flight.speed
         self.v_inf = np.array([-v * math.cos(self.flight.alpha), 0.0, v * math.sin(self.flight.alpha)])

@@ -252,3 +252,31 @@ def test_the_package_face():
     for name in ("read_aircraft", "write_aircraft", "load_shipped_aircraft", "ConfigFileError"):
         assert name in aircraft.__all__ and hasattr(aircraft, name)
     assert issubclass(ConfigFileError, ValueError) and issubclass(ConfigFileError, ConfigError)
+
+
+def test_round_trip_of_real_blades(tmp_path):
+    # a planform with a NACA thickness table on one rotor, a tabulated polar on the
+    # other, awkward floats: the file gives back the same BladeModels bit for bit
+    from aircraft.blade import BladeModel, Polar
+    table = BladeModel(stations=(0.2, 0.1 + 0.6, 1.0), chord=(0.5, 1 / 3, 0.3), twist=(0.1, 0.0, -math.pi / 40),
+                       thickness=(0.3, 0.18, 0.12), compressibility=True, tip_loss=0.97)
+    polar = BladeModel(polar=Polar(alpha=(-0.3, 0.0, 0.3), cl=(-1.2, 0.0, 1.2), cd=(0.05, 0.008, 0.05)))
+    c = coaxial_compound()
+    config = dataclasses.replace(c, rotors=(dataclasses.replace(c.rotors[0], blade=table),
+                                            dataclasses.replace(c.rotors[1], blade=polar)))
+    path = write_aircraft(config, tmp_path / "a.toml")
+    text = path.read_text()
+    assert text.count("[rotors.blade]") == 2 and text.count("[rotors.blade.polar]") == 1
+    back = read_aircraft(path)
+    assert back == config and back.rotors[0].blade == table and back.rotors[1].blade == polar
+    assert write_aircraft(back, tmp_path / "b.toml").read_text() == text
+
+
+def test_bad_blade_table_names_the_rotor_and_field(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(MINIMAL + "\n[rotors.blade]\nstations = [0.2, 1.0]\ncord = [0.3, 0.2]\n", encoding="utf-8")
+    with pytest.raises(ConfigFileError, match=r"rotors\[0\]\.blade: unknown blade field\(s\) \['cord'\]"):
+        read_aircraft(path)
+    path.write_text(MINIMAL + "\n[rotors.blade]\ntip_loss = 0.5\n", encoding="utf-8")
+    with pytest.raises(ConfigFileError, match=r"rotors\[0\]\.blade: BladeModel.tip_loss"):
+        read_aircraft(path)
