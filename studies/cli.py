@@ -148,6 +148,10 @@ STUDIES = {s.command: s for s in (
           "which cyclic each stick drives (control phase), 100/200 kt lift-offset trims, case A against the "
           "rotor assumptions (flap frequency, Lock number, control phase)", 6.0,
           default_out="results/roll_design_sensitivity"),
+    Study("multi-axis-hover-design", "studies.multi_axis_hover_design",
+          "four-axis EMF design of the coaxial in hover with actuator limits in the OLOP: per-axis HQ windows, "
+          "coupling, and a global search that tries to beat each axis's DMO answer", 5.0,
+          default_out="results/multi_axis_hover_design"),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),
