@@ -150,7 +150,7 @@ STUDIES = {s.command: s for s in (
           default_out="results/roll_design_sensitivity"),
     Study("multi-axis-hover-design", "studies.multi_axis_hover_design",
           "four-axis EMF design of the coaxial in hover with actuator limits in the OLOP: per-axis HQ windows, "
-          "coupling, and a global search that tries to beat each axis's DMO answer", 5.0,
+          "coupling, and a global search that tries to beat each axis's DMO answer", 8.0,
           default_out="results/multi_axis_hover_design"),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,

@@ -22,7 +22,7 @@ Files under ``results/multi_axis_hover_design/``:
 * ``global_check.csv``: DMO against the global search, per axis;
 * ``hq_window_<axis>.png``: one HQ window per axis.
 
-Run: ``rotorwake multi-axis-hover-design`` (about 5 min on 2 cores).
+Run: ``rotorwake multi-axis-hover-design`` (about 8 min on 2 cores).
 """
 from __future__ import annotations
 
@@ -91,7 +91,8 @@ def main(argv=None):
     check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population, progress=True)
     check.to_csv(out / "global_check.csv")
     print(check[["dmo_crossover", "search_crossover", "ratio", "beaten", "dmo_K_phi", "search_K_phi",
-                 "dmo_K_p", "search_K_p", "points", "feasible_points"]].to_string(float_format=lambda v: f"{v:.3g}"))
+                 "dmo_K_p", "search_K_p", "search_mimo_met", "search_mimo_crossover", "points",
+                 "feasible_points"]].to_string(float_format=lambda v: f"{v:.3g}"))
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 

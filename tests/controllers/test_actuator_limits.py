@@ -148,3 +148,6 @@ def test_global_check_beats_a_dmo_held_to_one_step_and_its_gains_meet_the_specs(
     graded = table[(table.kind != "objective") & (table.spec != "CrsMnG2")]
     assert graded.met.all()
     assert table.set_index("spec").loc["CrsMnG2", "value"] == pytest.approx(check.search_crossover, rel=1e-12)
+    # one axis: the simultaneous closed loop is the design plant's loop, so the MIMO check agrees
+    # (1e-6: the effective plant's structural reduction is exact up to round-off)
+    assert check.search_mimo_met and check.search_mimo_crossover == pytest.approx(check.search_crossover, rel=1e-6)
