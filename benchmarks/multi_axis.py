@@ -3,7 +3,8 @@
 The full linear aircraft (Dynamic Climb inflow, 31 states; translational drift u, v
 held by an assumed outer loop, as the single-axis hover designs hold it) with one EMF
 loop per axis closed simultaneously, tuned by :func:`controllers.multi_axis_design.design_multi_axis`
-(sequential loop closure with the single-axis DMO, repeated until the gains move < 1 %).
+(sequential loop closure with the single-axis DMO, repeated until the gains move < 1 %),
+the open-loop onset point graded with the assumed hover actuator limits (the design's default).
 Prints the wall time (target < 5 min on 2 cores), the per-axis table and the
 inter-axis coupling of the final closed loop.
 Run: ``python benchmarks/multi_axis.py`` (``--free-drift`` leaves u and v free;

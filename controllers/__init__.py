@@ -15,6 +15,9 @@
                  tolerance, several starts per step, every result re-checked with
                  python-control; search_designs: independent dense search
     roll_design_plant(linearize(trim(heli))): the Eq. 7.21 roll plant
+    design_multi_axis(aircraft StateSpace): all four EMF loops (roll, pitch, yaw, heave) of one
+                 MIMO aircraft, each axis's specs graded on the simultaneous closed loop
+                 (MultiAxisEMF), OLOP with the actuators' rate/travel limits (ActuatorLimits)
 """
 
 from .plants import roll_design_plant, hover_roll_plant, DelayedLTI, first_order_actuator, second_order_actuator
@@ -25,9 +28,13 @@ from .dmo import dmo, DMOSettings, DMOResult, InfeasibleDesignError, design_marg
 from .search import search_designs
 from .hqwindow import hq_window
 from .hq import specs_for, spec_table, HQSpec, BoundaryNotPublishedError
+from .actuator_limits import ActuatorLimits
+from .multi_axis import MultiAxisEMF, RateCommandModel
+from .multi_axis_design import design_multi_axis
 
 __all__ = ["roll_design_plant", "hover_roll_plant", "DelayedLTI", "first_order_actuator", "second_order_actuator",
            "crossover_frequency", "gain_phase_margins", "attitude_bandwidth", "EMFDesign", "CommandModel",
            "PIDGains", "Spec", "BandwidthSpec", "default_specs", "evaluate_specs", "SpecEvaluationError",
            "dmo", "DMOSettings", "DMOResult", "InfeasibleDesignError", "design_margins", "optimize",
-           "search_designs", "hq_window", "specs_for", "spec_table", "HQSpec", "BoundaryNotPublishedError"]
+           "search_designs", "hq_window", "specs_for", "spec_table", "HQSpec", "BoundaryNotPublishedError",
+           "ActuatorLimits", "MultiAxisEMF", "RateCommandModel", "design_multi_axis"]

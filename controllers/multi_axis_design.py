@@ -41,6 +41,7 @@ import pandas as pd
 from tqdm.auto import tqdm
 
 from . import metrics as m
+from .actuator_limits import ActuatorLimits, full_stick, olop_point
 from .dmo import dmo
 from .dmo_settings import DMOSettings, InfeasibleDesignError
 from .emf import EMFDesign, PIDGains, _as_delayed
@@ -152,7 +153,7 @@ def _check_channel(plant, channel):
                                   "another axis")
 
 
-def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", **selector):
+def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", limits=None, **selector):
     """The specs the DMO and the final check grade ``axis`` by.
 
     Parameters
@@ -167,6 +168,10 @@ def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", **selecto
         :func:`controllers.default_specs`).
     mte : str
         ADS-33E-PRF MTE class.
+    limits : ActuatorLimits, optional
+        The axis's actuator rate/travel limits and full-stick amplitude: with them
+        the open-loop onset point (``OlpOpG1.pilot``, and ``OlpOpG1.dist`` when a
+        disturbance amplitude is given) is graded; without them it is left out.
     **selector
         Passed to :func:`controllers.specs_for` (``uce``, ``attention``, ...).
 
@@ -185,7 +190,9 @@ def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", **selecto
     """
     wc = DEFAULT_CROSSOVER_START.get(axis, 1.5) if crossover_min is None else float(crossover_min)
     out = []
-    for s in specs_for(axis, mte=mte, missing="skip", **selector):
+    if limits is not None and not isinstance(limits, ActuatorLimits):
+        raise TypeError(f"axis_specs: limits must be ActuatorLimits or None, got {type(limits).__name__}")
+    for s in specs_for(axis, mte=mte, missing="skip", limits=limits, **selector):
         if getattr(s, "family", "") in _TIME_HISTORY_FAMILIES:
             continue
         if s.name == "CrsMnG2":
@@ -263,6 +270,8 @@ class MultiAxisResult:
     messages: dict
     wall_time: float
     sweeps: int = 0
+    #: axis -> ActuatorLimits graded by the OLOP (None: no OLOP on that axis)
+    limits: dict = field(default_factory=dict)
     _coupling: pd.DataFrame | None = field(default=None, repr=False)
 
     def to_pandas(self):
@@ -274,7 +283,10 @@ class MultiAxisResult:
             Index axis; ``crossover_design`` is the single-axis design plant's crossover
             (equal to the MIMO one at the sweeps' fixed point); ``unmet`` names every
             Level-1 spec missed on the simultaneous closed loop; ``limiting`` the
-            DMO's limiting spec(s) above the final boundary. The eigenvalue specs
+            DMO's limiting spec(s) above the final boundary; ``olop_margin_db`` the
+            open-loop onset point's dB below the approximate Level 1 line and ``olop_onset``
+            its onset frequency [rad/s] (``inf``: the full stick never reaches the rate
+            limit; NaN: no limits given). The eigenvalue specs
             (EigLcG1, EigDpG1) grade every pole of the simultaneous closed loop, so
             they read the same on every axis.
         """
@@ -284,13 +296,17 @@ class MultiAxisResult:
             gm, pm, _, wc = m.gain_phase_margins(view.broken_loop())
             graded = t[t.kind != "objective"]
             res = self.dmo_results.get(a)
+            lim = self.limits.get(a)
+            olop = (olop_point(view.broken_loop(), view.mixer_response_pilot(), lim.stick_amplitude, lim)
+                    if lim is not None else {"onset_frequency": np.nan, "margin_db": np.nan})
             rows.append({"axis": a, "response_type": self.emf.channels[a].response_type, "K_phi": g.K_phi,
                          "K_Iphi": g.K_Iphi, "K_p": g.K_p, "crossover": wc,
                          "crossover_design": m.crossover_frequency(self.designs[a].broken_loop()),
                          "crossover_boundary": res.crossover_boundary if res is not None else np.nan,
                          "drb": m.disturbance_rejection_bandwidth(view.disturbance_response()),
                          "drp_db": m.disturbance_rejection_peak(view.disturbance_response()),
-                         "gm_db": gm, "pm_deg": pm, "tau_eq": self.emf.loops[a].equivalent_delay,
+                         "gm_db": gm, "pm_deg": pm, "olop_margin_db": olop["margin_db"],
+                         "olop_onset": olop["onset_frequency"], "tau_eq": self.emf.loops[a].equivalent_delay,
                          "specs_met": f"{int(graded.met.sum())}/{len(graded)}",
                          "unmet": ", ".join(graded.spec[~graded.met.astype(bool)]),
                          "limiting": ", ".join(res.limiting) if res is not None else self.messages[a]})
@@ -373,7 +389,8 @@ class MultiAxisResult:
 
 def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains=None, command_models=None,
                       actuator=None, sensor_delay=0.01, mte="all other", crossover_start=None, drb_start=0.9,
-                      settings=None, later_settings=None, max_sweeps=3, gain_tolerance=0.01, progress=True):
+                      settings=None, later_settings=None, max_sweeps=3, gain_tolerance=0.01, progress=True,
+                      limits="hover"):
     """Design the EMF loops of several axes of one MIMO aircraft against every axis's specs.
 
     Parameters
@@ -408,6 +425,14 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         (K_p, K_phi/w_c, K_Iphi/w_c^2) changes by more than this fraction of |C(j w_c)|.
     progress : bool
         tqdm bar over the axis designs.
+    limits : "hover", dict or None
+        Actuator limits graded by the open-loop onset point (OlpOpG1): ``"hover"``
+        (default) uses :func:`controllers.actuator_limits.full_stick` per axis: the
+        assumed swashplate actuator rate and travel of
+        :data:`~controllers.actuator_limits.LIMITS_ASSUMPTIONS` and a full stick that
+        commands :data:`~controllers.actuator_limits.HOVER_FULL_STICK_COMMAND` through the
+        axis's command model; a dict maps axis -> ActuatorLimits (an axis left out
+        gets no OLOP); None grades no OLOP.
 
     Returns
     -------
@@ -447,6 +472,7 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     gains = {a: (start_gains or {}).get(a, PIDGains(0.3, 0.1, 0.05)) for a in axes}
     cms = {a: (command_models or {}).get(a) or _default_command(AXIS_CHANNELS[a]) for a in axes}
     wc0 = {**DEFAULT_CROSSOVER_START, **(crossover_start or {})}
+    lims = _axis_limits(limits, axes, cms)
     loops, designs, results, messages, rows, plants = {}, {}, {}, {}, [], {}
     bar = tqdm(total=len(axes) * max_sweeps, desc="multi-axis DMO", disable=not progress)
     converged, sweep = False, 0
@@ -465,7 +491,7 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
             plants[a] = eff
             design = AxisEMFDesign(eff, gains[a], axis=a, command_model=cms[a], actuator=actuator,
                                    sensor_delay=sensor_delay)
-            factory = (lambda wc, wd, a=a: axis_specs(a, wc, wd, mte=mte))
+            factory = (lambda wc, wd, a=a: axis_specs(a, wc, wd, mte=mte, limits=lims[a]))
             ts = time.perf_counter()
             prev = results.get(a)
             # later sweeps continue locally just below the boundaries the axis reached; the full
@@ -508,7 +534,26 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         res = results[a]
         wc = res.crossover_boundary if res is not None else wc0[a]
         wd = res.drb_boundary if res is not None and np.isfinite(res.drb_boundary) else drb_start
-        spec_lists[a] = axis_specs(a, wc, wd, mte=mte)
+        spec_lists[a] = axis_specs(a, wc, wd, mte=mte, limits=lims[a])
         tables[a] = evaluate_specs(emf.axis_view(a), spec_lists[a])
     return MultiAxisResult(emf, designs, results, tables, spec_lists, pd.DataFrame(rows), converged, messages,
-                           time.perf_counter() - t0, sweep + 1)
+                           time.perf_counter() - t0, sweep + 1, limits=lims)
+
+
+def _axis_limits(limits, axes, command_models):
+    """Axis -> ActuatorLimits or None from the ``limits`` argument of :func:`design_multi_axis`."""
+    if limits is None:
+        return {a: None for a in axes}
+    if isinstance(limits, str):
+        if limits != "hover":
+            raise ValueError(f"limits must be 'hover', a dict of ActuatorLimits or None, got {limits!r}")
+        return {a: full_stick(a, command_models[a].gain) for a in axes}
+    if not isinstance(limits, dict):
+        raise TypeError(f"limits must be 'hover', a dict of ActuatorLimits or None, got {type(limits).__name__}")
+    unknown = sorted(set(limits) - set(axes))
+    if unknown:
+        raise ValueError(f"limits names axes not designed: {unknown} (designed: {axes})")
+    for a, v in limits.items():
+        if not isinstance(v, ActuatorLimits):
+            raise TypeError(f"limits[{a!r}] must be ActuatorLimits, got {type(v).__name__}")
+    return {a: limits.get(a) for a in axes}

@@ -37,6 +37,7 @@ import numpy as np
 import pandas as pd
 
 from . import metrics as m
+from .actuator_limits import ActuatorLimits, olop_margin
 from .smooth import (CrossoverMinimum, DisturbanceBandwidthFloor, DisturbancePeakLimit, GainMarginPastCritical,
                      NicholsEllipse, PhaseMarginBand, SmoothConstraint)
 
@@ -151,7 +152,7 @@ def _max_real_pole(design):
     return float(np.max(design.closed_loop_poles().real))
 
 
-def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.05, olop_rate=1.0):
+def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.05, olop_rate=1.0, limits=None):
     """The roll-axis spec set of Table 7.3 (see module docstring for sources).
 
     ``mte`` names the ADS-33E-PRF MTE class of the bandwidth chart, exactly
@@ -163,6 +164,19 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
     ``olop_stick`` [stick units] and ``olop_rate`` [mixer units/s] set the
     open-loop-onset-point check (full-stick sinusoid against the actuator rate
     limit); the defaults are placeholders for the hand-written and coaxial plants.
+    ``limits`` (:class:`~controllers.actuator_limits.ActuatorLimits`) replaces them
+    with the aircraft's actuator rate and travel limits and its full-stick
+    amplitude: the OLOP is then graded by
+    :func:`~controllers.actuator_limits.olop_margin` (``+inf`` when the rate
+    limit cannot be reached, no fixed margin) and ``olop_stick``/``olop_rate``
+    are not used.
+
+    Examples
+    --------
+    >>> from controllers.actuator_limits import ActuatorLimits
+    >>> lim = ActuatorLimits(rate_limit=0.7, position_limit=0.14, stick_amplitude=10.0)
+    >>> [s.source for s in default_specs(limits=lim) if s.name == "OlpOpG1"][0][:9]
+    'Duda 1997'
     """
     from .hq.limits import BANDWIDTH_LIMITS, canonical_mte   # one definition; unknown MTE names raise
 
@@ -170,6 +184,12 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
     gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
     pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]
     mte = canonical_mte(mte)
+    if limits is None:
+        olop = lambda d: _olop_margin(d, olop_stick, olop_rate)      # the placeholder check, unchanged
+    elif isinstance(limits, ActuatorLimits):
+        olop = lambda d: olop_margin(d.broken_loop(), d.mixer_response_pilot(), limits.stick_amplitude, limits)
+    else:
+        raise TypeError(f"default_specs: limits must be ActuatorLimits or None, got {type(limits).__name__}")
     bw1, bw2, tau1, tau2 = BANDWIDTH_LIMITS[("roll", mte)]
     return [
         Spec("EigLcG1", "all eigenvalues in the left half plane", _max_real_pole, "max", 0.0, 0.0,
@@ -199,8 +219,10 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
              lambda d: m.damping_in_band(d.closed_loop_poles(), 0.5, 4.0), "min", 0.35, 0.15,
              kind="soft", source="Table 7.3; ADS-33E-PRF", needs_stable=False),
         Spec("OlpOpG1", "open-loop onset point, pilot input (dB below the approximate boundary)",
-             lambda d: _olop_margin(d, olop_stick, olop_rate), "min", 0.0, -6.0, kind="soft",
-             units="dB", source="Duda 1997 OLOP criterion (approximate boundary)"),
+             olop, "min", 0.0, -6.0, kind="soft", units="dB",
+             source="Duda 1997 OLOP criterion (approximate boundary)" + (
+                 "" if limits is None else f"; actuator limits {limits.rate_limit:.4g}/s, travel "
+                                           f"{limits.position_limit:.4g}, stick {limits.stick_amplitude:.4g}")),
         Spec("CrsMnG2", "minimum crossover frequency", lambda d: m.crossover_frequency(d.broken_loop()),
              "min", crossover_min, 0.8 * crossover_min, kind="soft", units="rad/s", source="generic",
              smooth=CrossoverMinimum()),

@@ -152,6 +152,10 @@ STUDIES = {s.command: s for s in (
           "hover power of a full-scale coaxial rotor and its lower rotor alone (Harrington, NACA TN-2318) "
           "with real blades, ours against the measured", 7.0,
           default_out="results/harrington_hover_power"),
+    Study("multi-axis-hover-design", "studies.multi_axis_hover_design",
+          "four-axis EMF design of the coaxial in hover with actuator limits in the OLOP: per-axis HQ windows, "
+          "coupling, and a global search that tries to beat each axis's DMO answer", 8.0,
+          default_out="results/multi_axis_hover_design"),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),

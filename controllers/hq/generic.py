@@ -22,11 +22,12 @@ without changing a number, and adds:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import fields
 
 import numpy as np
 
 from .. import metrics as m
+from ..actuator_limits import ActuatorLimits, olop_margin
 from ..metrics import duda_olop_limit
 from ..specs import Spec, default_specs
 from .base import HQSpec
@@ -57,87 +58,6 @@ _PROVENANCE = {
     "RmsAcG1.pilot": ("objective", "objective"),
     "RmsAcG1.dist": ("objective", "objective"),
 }
-
-
-@dataclass(frozen=True)
-class ActuatorLimits:
-    """Actuator limits and input amplitudes for the open-loop onset point.
-
-    Attributes
-    ----------
-    rate_limit : float
-        Actuator rate limit [mixer units/s].
-    position_limit : float
-        Actuator position (travel) limit about trim [mixer units]; ``inf`` if none.
-    stick_amplitude : float
-        Pilot input amplitude [stick units], e.g. full stick.
-    disturbance_amplitude : float
-        Disturbance amplitude for ``OlpOpG1.dist`` [rad]; NaN leaves that spec out.
-    """
-
-    rate_limit: float
-    position_limit: float
-    stick_amplitude: float
-    disturbance_amplitude: float = float("nan")
-
-    def __post_init__(self):
-        for name in ("rate_limit", "position_limit", "stick_amplitude"):
-            v = getattr(self, name)
-            if np.isnan(v) or v <= 0 or (name != "position_limit" and not np.isfinite(v)):
-                raise ValueError(f"ActuatorLimits.{name} must be > 0 (finite except position_limit), got {v}")
-        d = self.disturbance_amplitude
-        if not np.isnan(d) and (not np.isfinite(d) or d <= 0):
-            raise ValueError(f"ActuatorLimits.disturbance_amplitude must be > 0 or NaN, got {d}")
-
-
-class _PositionLimited:
-    """Input -> actuator response whose amplitude is capped by the position limit."""
-
-    def __init__(self, sys, amplitude, position_limit):
-        self.sys, self.amplitude, self.position_limit = sys, amplitude, position_limit
-
-    def response(self, omega):
-        _, h = m.frequency_response_of(self.sys, omega)
-        cap = np.minimum(1.0, self.position_limit / np.maximum(self.amplitude * np.abs(h), 1e-300))
-        return h * cap
-
-
-def olop_margin(loop, input_to_actuator, amplitude, limits):
-    """dB of the open-loop onset point below the approximate Level 1 line.
-
-    Parameters
-    ----------
-    loop : LTI or FrequencyFunction
-        Broken loop at the actuator (mixer) input.
-    input_to_actuator : LTI or FrequencyFunction
-        Pilot (or disturbance) input -> actuator (mixer) input, closed loop.
-    amplitude : float
-        Input amplitude [stick units, or rad for a disturbance].
-    limits : ActuatorLimits
-        Rate and position limits of the actuator.
-
-    Returns
-    -------
-    float
-        Margin [dB] (> 0 inside Level 1); ``+inf`` when the rate limit is
-        never reached on the frequency grid (rate limiting cannot occur).
-
-    Examples
-    --------
-    >>> import control
-    >>> lim = ActuatorLimits(rate_limit=1.0, position_limit=np.inf, stick_amplitude=0.1)
-    >>> olop_margin(control.tf([1.0], [1.0, 0.0]), control.tf([1.0], [1.0]), 0.1, lim) > 0
-    True
-    """
-    if not isinstance(limits, ActuatorLimits):
-        raise TypeError(f"olop_margin: limits must be ActuatorLimits, got {type(limits).__name__}")
-    if not np.isfinite(amplitude) or amplitude <= 0:
-        raise ValueError(f"olop_margin: amplitude must be finite and > 0, got {amplitude}")
-    capped = _PositionLimited(input_to_actuator, amplitude, limits.position_limit)
-    phase, gain, w_on = m.open_loop_onset_point(loop, capped, amplitude, limits.rate_limit)
-    if not np.isfinite(w_on):
-        return float("inf")
-    return float(duda_olop_limit(phase) - gain)
 
 
 def model_following_cost(response, command, fit_range=(1.0, 10.0), n_points=20):

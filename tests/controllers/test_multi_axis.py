@@ -184,12 +184,13 @@ def test_decoupled_design_reproduces_the_single_axis_dmo():
                                        "pitch": ([4.0], [1, 1.0], "delta_lon", "-q")}.items():
         single = AxisEMFDesign(siso(num, den, inp, out), PIDGains(0.3, 0.1, 0.05), axis=axis,
                                actuator=first_order_actuator(30.0))
-        ref = dmo(single, specs_factory=lambda wc, wd, a=axis: axis_specs(a, wc, wd), settings=FAST,
-                  crossover_start=START[axis], progress=False)
+        # the same actuator limits (the hover defaults through each axis's command model): OLOP graded alike
+        ref = dmo(single, specs_factory=lambda wc, wd, a=axis: axis_specs(a, wc, wd, limits=res.limits[a]),
+                  settings=FAST, crossover_start=START[axis], progress=False)
         np.testing.assert_allclose(res.emf.loops[axis].gains.as_array(), ref.design.gains.as_array(), rtol=1e-6)
         table = res.specs[axis].set_index("spec")
-        single_table = evaluate_specs(ref.design, axis_specs(axis, ref.crossover_boundary, ref.drb_boundary)
-                                      ).set_index("spec")
+        single_table = evaluate_specs(ref.design, axis_specs(axis, ref.crossover_boundary, ref.drb_boundary,
+                                                             limits=res.limits[axis])).set_index("spec")
         # the eigenvalue specs grade the whole aircraft: every closed-loop pole, both axes'
         poles = [n for n in table.index if n.startswith("Eig")]
         np.testing.assert_allclose(table.value.drop(poles).astype(float),
