@@ -37,7 +37,7 @@ _PARAM_UNDOCUMENTED = "Parameters section does not name every parameter yet"
 KNOWN_GAPS = {
     "controllers.specs.spec_by_name": "no docstring yet",
     **{name: _PARAMS_SECTION_MISSING for name in (
-        "aircraft.helicopter.airframe.fuselage_loads", "aircraft.helicopter.airframe.propeller_loads",
+        "aircraft.helicopter.airframe.propeller_loads",
         "aircraft.helicopter.linearize.default_steps",
         "aircraft.helicopter.linearize.modes",
         "aircraft.inflow.base.flap_rate_names",
