@@ -24,10 +24,11 @@ from .degeneracy import (DegeneracyReport, MultiStartReport, NoInformationError,
                          hessian_report, multistart_report, square_components)
 from .errors import IdentificationError, InputValueError, UnstableModelError
 from .response import MeasuredResponse
+from .sensitivity import _residual_jacobian
 from .statistics import parameter_statistics, residual_scaled_errors
 from .structures import ModelStructure
 
-__all__ = ["fit", "FitResult", "cifer_cost", "coherence_weight", "COHERENCE_FLOOR"]
+__all__ = ["fit", "FitResult", "cifer_cost", "coherence_weight", "COHERENCE_FLOOR", "JACOBIANS"]
 
 W_GAIN = 1.0
 W_PHASE = 0.01745
@@ -35,6 +36,10 @@ W_PHASE = 0.01745
 #: carry information; below 0.2 the weight W_gamma is < 8 % of its maximum and
 #: the estimate is mostly noise (Tischler & Remple put the usable floor at 0.4-0.6).
 COHERENCE_FLOOR = 0.2
+#: How :func:`fit` differentiates the residual: scipy's forward differences in the
+#: optimizer and central differences for the bounds (the default), or the
+#: structure's analytic derivatives (:mod:`flightid.sensitivity`).
+JACOBIANS = ("finite-difference", "analytic")
 
 
 def coherence_weight(coherence):
@@ -304,7 +309,7 @@ class _Problem:
     """The weighted CIFER residual of a structure over sampled pairs, with the
     stability penalty of §6.4.1 (one model evaluation over all pairs' grids)."""
 
-    def __init__(self, structure, pair_data, stability_margin):
+    def __init__(self, structure, pair_data, stability_margin, jacobian="finite-difference"):
         self.structure = structure
         self.free = structure.free_names
         self.pairs = pair_data
@@ -320,6 +325,37 @@ class _Problem:
         self.buffer = 1e-4 * max(1.0, abs(stability_margin))
         self.weight = 1e3
         self.lower = np.array([0.0 if n in structure.delay_names else -np.inf for n in self.free])
+        # analytic only where the structure's derivatives describe its response
+        self.analytic = jacobian == "analytic" and structure._has_sensitivities()
+        if self.analytic:
+            self._maps = structure._reference_maps(self.free)
+            self._weights = []
+            for p in pair_data:
+                wg = np.sqrt(20.0 / p.h.size * coherence_weight(p.coh))
+                self._weights.append((wg * np.sqrt(W_GAIN), wg * np.sqrt(W_PHASE)))
+
+    def jacobian(self, x, with_penalty=True):
+        """d(residuals)/dx: analytic where available, else central differences."""
+        if not self.analytic:
+            return _jacobian(lambda v: self.residuals(v, with_penalty=with_penalty), x)
+        jac = _residual_jacobian(self.structure, dict(zip(self.free, x)), self.pairs, self._weights, self._maps)
+        if with_penalty and self.has_dynamics:
+            jac = np.vstack([jac, self._penalty_gradient(x)[None, :]])
+        return jac
+
+    def _penalty_gradient(self, x):
+        """Central differences of the stability penalty (eigenvalues only: cheap); zero
+        where the penalty is inactive."""
+        pen = lambda v: self.residuals(v, with_penalty=True)[-1]      # noqa: E731
+        if pen(x) == 0.0:
+            return np.zeros(x.size)
+        grad = np.empty(x.size)
+        for k in range(x.size):
+            h = 1e-6 * max(1.0, abs(x[k]))
+            e = np.zeros_like(x)
+            e[k] = h
+            grad[k] = (pen(x + e) - pen(x - e)) / (2 * h)
+        return grad
 
     def residuals(self, x, with_penalty=True):
         vals = dict(zip(self.free, x))
@@ -375,8 +411,8 @@ class _Problem:
             x = self.revive(x)
         self.weight = 1e3
         for _ in range(4):
-            sol = least_squares(self.residuals, x, bounds=(self.lower, np.full_like(x, np.inf)),
-                                x_scale="jac", method="trf", max_nfev=max_nfev or 200 * (len(x) + 1),
+            sol = least_squares(self.residuals, x, jac=self.jacobian if self.analytic else "2-point",
+                                bounds=(self.lower, np.full_like(x, np.inf)), x_scale="jac", method="trf", max_nfev=max_nfev or 200 * (len(x) + 1),
                                 xtol=1e-12, ftol=1e-12)
             x = sol.x
             fitted = self.structure.with_values(dict(zip(self.free, x)))
@@ -405,7 +441,8 @@ def _start_points(x0, lower, starts, seed, spread):
 def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=None,
         n_omega=20, coherence_min=0.6, stability_margin=0.0, require_stable=True,
         max_nfev=None, starts=1, seed=None, start_spread=0.5, square_blocks=None,
-        multistart_cost_tol=None, multistart_parameter_rtol=0.02, revive_dead_pairs=False) -> FitResult:
+        multistart_cost_tol=None, multistart_parameter_rtol=0.02, revive_dead_pairs=False,
+        jacobian="finite-difference") -> FitResult:
     """Minimise the CIFER cost of ``structure`` against measured responses.
 
     Parameters
@@ -458,6 +495,15 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
         at -inf dB with zero gradient. With True, zero-valued parameters that
         feed such a pair start at the data's median magnitude with the better
         sign (see ``_Problem.revive``); default False keeps the given start.
+    jacobian : {"finite-difference", "analytic"}
+        How the residual is differentiated (:data:`JACOBIANS`). "analytic" uses the
+        structure's exact derivatives (state-space, M/Lbar, gain/delay forms with
+        exact delays; :mod:`flightid.sensitivity`) in the optimizer and for the
+        bounds: one evaluation per Jacobian instead of one per parameter, the way to
+        refit structures with a hundred or more free parameters. A structure
+        without them (e.g. a subclass adding a term to its response) falls back to
+        differences. The optimum agrees with the default's to the optimizer's
+        tolerance, not bit for bit.
 
     Returns
     -------
@@ -486,6 +532,8 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     >>> {k: round(v, 1) for k, v in result.structure.values.items()}, bool(result.J_ave < 1)
     ({'f': -2.0, 'g': 4.0}, True)
     """
+    if not (isinstance(jacobian, str) and jacobian in JACOBIANS):
+        raise InputValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
     free = structure.free_names
     if not free:
         raise IdentificationError("the structure has no free parameters")
@@ -516,14 +564,14 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     with threadpool_limits(1):
         return _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable,
                     max_nfev, starts, seed, start_spread, square_blocks, multistart_cost_tol,
-                    multistart_parameter_rtol, revive_dead_pairs)
+                    multistart_parameter_rtol, revive_dead_pairs, jacobian)
 
 
 def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable, max_nfev,
          starts, seed, start_spread, square_blocks, multistart_cost_tol, multistart_parameter_rtol,
-         revive_dead_pairs):
+         revive_dead_pairs, jacobian):
     free = structure.free_names
-    problem = _Problem(structure, pair_data, stability_margin)
+    problem = _Problem(structure, pair_data, stability_margin, jacobian)
     x0 = np.array([structure.values[n] for n in free])
     records, outcomes, first_error = [], [], None
     for k, xs in enumerate(_start_points(x0, problem.lower, starts, seed, start_spread)):
@@ -559,7 +607,7 @@ def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, requ
     cost_table["J_ave"] = j_ave
     cost_table.attrs["J_ave"] = j_ave
 
-    jac = _jacobian(lambda x: problem.residuals(x, with_penalty=False), sol.x)
+    jac = problem.jacobian(sol.x, with_penalty=False)
     cr, ins = _cramer_rao_insensitivity(None, sol.x, jac=jac)
     report = hessian_report(jac, free, sol.x)
     ranges = {(p.output, p.input): (p.omega[0], p.omega[-1]) for p in pair_data}
