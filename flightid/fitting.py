@@ -24,7 +24,7 @@ from .degeneracy import (DegeneracyReport, MultiStartReport, NoInformationError,
                          hessian_report, multistart_report, square_components)
 from .errors import IdentificationError, InputValueError, UnstableModelError
 from .response import MeasuredResponse
-from .sensitivity import _residual_jacobian
+from .sensitivity import _cramer_rao_insensitivity, _jacobian, _penalty_gradient, _residual_jacobian
 from .statistics import parameter_statistics, residual_scaled_errors
 from .structures import ModelStructure
 
@@ -344,18 +344,8 @@ class _Problem:
         return jac
 
     def _penalty_gradient(self, x):
-        """Central differences of the stability penalty (eigenvalues only: cheap); zero
-        where the penalty is inactive."""
-        pen = lambda v: self.residuals(v, with_penalty=True)[-1]      # noqa: E731
-        if pen(x) == 0.0:
-            return np.zeros(x.size)
-        grad = np.empty(x.size)
-        for k in range(x.size):
-            h = 1e-6 * max(1.0, abs(x[k]))
-            e = np.zeros_like(x)
-            e[k] = h
-            grad[k] = (pen(x + e) - pen(x - e)) / (2 * h)
-        return grad
+        """d(stability penalty)/dx (:func:`flightid.sensitivity._penalty_gradient`)."""
+        return _penalty_gradient(lambda v: self.residuals(v, with_penalty=True)[-1], x)
 
     def residuals(self, x, with_penalty=True):
         vals = dict(zip(self.free, x))
@@ -642,40 +632,3 @@ def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, requ
     data_out = sources[0] if len(sources) == 1 else sources
     return FitResult(fitted, table, cost_table, j_ave, data_out, success, message, n_omega, pair_data,
                      degeneracy=report, multistart=multistart, skipped_pairs=skipped)
-
-
-def _jacobian(residual_fn, x):
-    """Central-difference Jacobian of the residual vector."""
-    r0 = residual_fn(x)
-    jac = np.empty((r0.size, x.size))
-    for k in range(x.size):
-        h = 1e-6 * max(1.0, abs(x[k]))
-        e = np.zeros_like(x)
-        e[k] = h
-        jac[:, k] = (residual_fn(x + e) - residual_fn(x - e)) / (2 * h)
-    return jac
-
-
-def _cramer_rao_insensitivity(residual_fn, x, jac=None):
-    """Eqs. 3.15-3.16 with H = d2 J_sum / dTheta2 ~ 2 Jr^T Jr (Gauss-Newton).
-
-    Returns the *un-normalised* (2 sqrt(inv(H)_ii), 1/sqrt(H_ii)) per parameter.
-    """
-    if jac is None:
-        jac = _jacobian(residual_fn, x)
-    hess = 2.0 * jac.T @ jac
-    diag = np.diag(hess)
-    ins = np.where(diag > 0, 1.0 / np.sqrt(np.maximum(diag, 1e-300)), np.inf)
-    # covariance by symmetric eigendecomposition: a direction the data cannot
-    # see (near-zero eigenvalue) must give a huge bound, never a clipped 0
-    # (inverting an ill-conditioned H directly can yield negative diagonals)
-    eigval, eigvec = np.linalg.eigh(hess)
-    if not eigval.max() > 0:
-        # the cost does not depend on any free parameter (e.g. a gain fixed at 0
-        # multiplies them all): every bound is unbounded
-        return np.full(x.size, np.inf), ins
-    floor = eigval.max() * 1e-14
-    with np.errstate(over="ignore"):
-        cov_diag = np.sum(eigvec ** 2 / np.maximum(eigval, floor)[None, :], axis=1)
-    cr = 2.0 * np.sqrt(cov_diag)
-    return cr, ins

@@ -1,4 +1,6 @@
-"""The analytic Jacobian of the CIFER residual (opt-in: ``fit(..., jacobian="analytic")``).
+"""Derivatives of the CIFER residual: the central-difference Jacobian (the default), the
+analytic one (opt-in: ``fit(..., jacobian="analytic")``), and the Cramér-Rao bounds and
+insensitivities built on either.
 
 The residual of one response is the weighted magnitude error in dB and phase error
 in degrees (Eq. 3.13). With H the model's response and dH/dp its derivative,
@@ -43,3 +45,54 @@ def _residual_jacobian(structure, values, pairs, slices_weights, maps):
         blocks.append(w_mag[:, None] * _DB * ratio.real)
         blocks.append(w_ph[:, None] * _DEG * ratio.imag)
     return np.vstack(blocks)
+
+
+def _penalty_gradient(penalty, x):
+    """Central differences of the stability penalty (eigenvalues only: cheap); zero where
+    the penalty is inactive."""
+    if penalty(x) == 0.0:
+        return np.zeros(x.size)
+    grad = np.empty(x.size)
+    for k in range(x.size):
+        h = 1e-6 * max(1.0, abs(x[k]))
+        e = np.zeros_like(x)
+        e[k] = h
+        grad[k] = (penalty(x + e) - penalty(x - e)) / (2 * h)
+    return grad
+
+
+def _jacobian(residual_fn, x):
+    """Central-difference Jacobian of the residual vector."""
+    r0 = residual_fn(x)
+    jac = np.empty((r0.size, x.size))
+    for k in range(x.size):
+        h = 1e-6 * max(1.0, abs(x[k]))
+        e = np.zeros_like(x)
+        e[k] = h
+        jac[:, k] = (residual_fn(x + e) - residual_fn(x - e)) / (2 * h)
+    return jac
+
+
+def _cramer_rao_insensitivity(residual_fn, x, jac=None):
+    """Eqs. 3.15-3.16 with H = d2 J_sum / dTheta2 ~ 2 Jr^T Jr (Gauss-Newton).
+
+    Returns the *un-normalised* (2 sqrt(inv(H)_ii), 1/sqrt(H_ii)) per parameter.
+    """
+    if jac is None:
+        jac = _jacobian(residual_fn, x)
+    hess = 2.0 * jac.T @ jac
+    diag = np.diag(hess)
+    ins = np.where(diag > 0, 1.0 / np.sqrt(np.maximum(diag, 1e-300)), np.inf)
+    # covariance by symmetric eigendecomposition: a direction the data cannot
+    # see (near-zero eigenvalue) must give a huge bound, never a clipped 0
+    # (inverting an ill-conditioned H directly can yield negative diagonals)
+    eigval, eigvec = np.linalg.eigh(hess)
+    if not eigval.max() > 0:
+        # the cost does not depend on any free parameter (e.g. a gain fixed at 0
+        # multiplies them all): every bound is unbounded
+        return np.full(x.size, np.inf), ins
+    floor = eigval.max() * 1e-14
+    with np.errstate(over="ignore"):
+        cov_diag = np.sum(eigvec ** 2 / np.maximum(eigval, floor)[None, :], axis=1)
+    cr = 2.0 * np.sqrt(cov_diag)
+    return cr, ins

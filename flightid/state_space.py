@@ -98,6 +98,8 @@ class StateSpaceStructure(ModelStructure):
                "C": np.zeros((s.size,) + c.shape, dtype=complex)}
         out["G"][:, :, j] = row
         out["C"][:, i, :] = col          # dU_ij/dC_ib = (R G)_bj
+        u = row @ g[:, j]
         if "D" in mats:
             out["D"] = _unit_sensitivity(mats["D"].shape, s.size, i, j)
-        return out
+            u = u + mats["D"][i, j]
+        return u, out

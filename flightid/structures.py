@@ -168,9 +168,10 @@ class ModelStructure:
 
     # -- derivatives (the analytic Jacobian of :func:`flightid.fit`) ------------
     def _entry_sensitivities(self, mats, s, i, j):
-        """Derivatives of the undelayed response's element (i, j) with respect to the
-        entries of every non-delay pattern: ``{label: (n_w, rows, cols) complex}`` at
-        the Laplace variables ``s`` (seconds). None where a structure does not give them."""
+        """The undelayed response's element (i, j) at the Laplace variables ``s``
+        (seconds), (n_w,), and its derivatives with respect to the entries of every
+        non-delay pattern, ``{label: (n_w, rows, cols) complex}``. None where a
+        structure does not give them."""
         return None
 
     def _has_sensitivities(self):
@@ -199,23 +200,26 @@ class ModelStructure:
             a, b, k, sg = (np.array(v) for v in zip(*refs))
             proj = np.zeros((len(refs), len(free)))
             proj[np.arange(len(refs)), k] = sg
-            maps[label] = (a.astype(int), b.astype(int), proj)
+            # untied entries (one per parameter) are scattered, ties summed through proj
+            unique = np.unique(k).size == k.size
+            maps[label] = (a.astype(int), b.astype(int), proj, k.astype(int), sg.astype(float), unique)
         return maps
 
     def _pair_derivatives(self, mats, s, i, j, maps):
         """(H_ij, dH_ij/dp) at ``s``: the delayed response (n_w,) and its derivatives
         (n_w, n_free) with respect to the free parameters of ``maps``."""
-        u = self._undelayed(mats, s)[i, j]
+        u, sens = self._entry_sensitivities(mats, s, i, j)
         e = np.exp(-self._delays(mats)[i, j] * s)
-        sens = self._entry_sensitivities(mats, s, i, j)
         n_free = next(iter(maps.values()))[2].shape[1] if maps else 0
         dh = np.zeros((s.size, n_free), dtype=complex)
-        for label, (a, b, proj) in maps.items():
+        for label, (a, b, proj, k, sg, unique) in maps.items():
             if label == self._delay_label:
                 hit = (a == i) & (b == j)
                 if np.any(hit):
                     # d/dtau of exp(-tau s) is -s exp(-tau s)
                     dh += np.outer(-s * u * e, proj[hit].sum(axis=0))
+            elif unique:
+                dh[:, k] += sens[label][:, a, b] * (sg[None, :] * e[:, None])
             else:
                 dh += (sens[label][:, a, b] * e[:, None]) @ proj
         return u * e, dh
@@ -368,7 +372,7 @@ class MLTauStructure(ModelStructure):
         sm = self._s_model(s)
         row, col = _ml_factors(m, lb, self.C, sm, i, j)
         d_l = -row[:, :, None] * col[:, None, :]
-        return {"M": sm[:, None, None] * d_l, "L": d_l}
+        return row[:, j], {"M": sm[:, None, None] * d_l, "L": d_l}
 
 
 def _fgc_response(f, g, c, d, sm):
@@ -467,9 +471,11 @@ class FGCStructure(ModelStructure):
         row, col = _fgc_factors(f, g, self.C, self._s_model(s), i, j)
         out = {"F": row[:, :, None] * col[:, None, :], "G": np.zeros((s.size,) + g.shape, dtype=complex)}
         out["G"][:, :, j] = row
+        u = row @ g[:, j]
         if "D" in mats:
             out["D"] = _unit_sensitivity(mats["D"].shape, s.size, i, j)
-        return out
+            u = u + mats["D"][i, j]
+        return u, out
 
 
 class GainDelayStructure(ModelStructure):
@@ -494,4 +500,5 @@ class GainDelayStructure(ModelStructure):
         return np.zeros((0, 0)), np.zeros((0, len(self.inputs))), np.zeros((len(self.outputs), 0)), mats["K"]
 
     def _entry_sensitivities(self, mats, s, i, j):
-        return {"K": _unit_sensitivity(mats["K"].shape, s.size, i, j)}
+        u = np.full(s.size, mats["K"][i, j], dtype=complex)
+        return u, {"K": _unit_sensitivity(mats["K"].shape, s.size, i, j)}
