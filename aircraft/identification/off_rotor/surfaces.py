@@ -475,9 +475,36 @@ def reduce_off_rotor(fitted, responses, *, insensitivity_max=10.0, cramer_rao_ma
     from flightid import reduce
     pairs = [(p.output, p.input) for p in fitted.pairs]
     ranges = {(p.output, p.input): (p.omega[0], p.omega[-1]) for p in fitted.pairs}
-    return reduce(fitted.structure, responses, insensitivity_max=insensitivity_max, cramer_rao_max=cramer_rao_max,
-                  pairs=pairs, frequency_ranges=ranges, n_omega=fitted.n_omega, starts=starts, seed=seed,
-                  jacobian="analytic")
+    reduction = reduce(fitted.structure, responses, insensitivity_max=insensitivity_max,
+                       cramer_rao_max=cramer_rao_max, pairs=pairs, frequency_ranges=ranges, n_omega=fitted.n_omega,
+                       starts=starts, seed=seed, jacobian="analytic")
+    return _delays_at_bound_removed(reduction, fitted)
+
+
+#: A delay below this is none [s] (a Padé pole beyond 2e6 rad/s; the structures' own threshold).
+_NO_DELAY_S = 1e-6
+
+
+def _delays_at_bound_removed(reduction, fitted):
+    """A delay the reduction held (no influence left after another removal) while it sat at
+    its 0 s bound is a delay the data do not support: set to 0 s (below 1 us the response
+    is the same to double precision) and logged as removed, with the reason."""
+    result = reduction.result
+    first_fixed = set(fitted.structure.fixed)
+    removed = set(reduction.removed)
+    held = [n for n in result.structure.delay_names if n in result.structure.fixed and n not in first_fixed
+            and n not in removed and abs(result.structure.values[n]) < _NO_DELAY_S]
+    if not held:
+        return reduction
+    was = {n: result.structure.values[n] for n in held}
+    result.structure = result.structure.with_values({n: 0.0 for n in held})
+    result.parameters.loc[result.parameters.parameter.isin(held), "value"] = 0.0
+    rows = [{"parameter": n, "reason": "at its bound", "metric_pct": float("inf"), "J_ave_before": result.J_ave,
+             "J_ave_after": result.J_ave, "max_single_rise": 0.0, "accepted": True, "runaway": False,
+             "note": f"held by the reduction at {was[n]:.3g} s (no influence left): a delay below "
+                     f"{_NO_DELAY_S:g} s is none; removed"} for n in held]
+    reduction.log = pd.concat([reduction.log, pd.DataFrame(rows)], ignore_index=True)
+    return reduction
 
 
 # --------------------------------------------------------------------------- wake exposure
