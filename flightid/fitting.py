@@ -402,7 +402,8 @@ class _Problem:
         self.weight = 1e3
         for _ in range(4):
             sol = least_squares(self.residuals, x, jac=self.jacobian if self.analytic else "2-point",
-                                bounds=(self.lower, np.full_like(x, np.inf)), x_scale="jac", method="trf", max_nfev=max_nfev or 200 * (len(x) + 1),
+                                bounds=(self.lower, np.full_like(x, np.inf)), x_scale="jac", method="trf",
+                                max_nfev=max_nfev or 200 * (len(x) + 1),
                                 xtol=1e-12, ftol=1e-12)
             x = sol.x
             fitted = self.structure.with_values(dict(zip(self.free, x)))

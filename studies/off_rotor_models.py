@@ -7,7 +7,8 @@ with the wake's velocity recorded at 7 points along the horizontal tail's quarte
 chord (the configuration's ``htail_position``) and 7 along a wing 0.25 R under the
 hub -> joint input-output vbar/lam (Eq. 4.9) -> Eq. 2.39 (tail) and Eq. 2.40 (wing)
 fitted over 1-5 rad/s -> reduced (a delay or gain the data do not support is removed,
-Fig. 6.1) and judged by the trust rule (CR, insensitivity and verdict per parameter) -> verification on a doublet per control (not used in the
+Fig. 6.1) and judged by the trust rule (CR, insensitivity and verdict per parameter) ->
+verification on a doublet per control (not used in the
 fit) beside the zero-input noise floor. Whether the tail sees the wake is computed
 from the wake's skew (:func:`aircraft.identification.wake_exposure`), at the trimmed
 inflow and over mu with momentum theory. The dissertation's hover models (§4.6.1,

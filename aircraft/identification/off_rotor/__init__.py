@@ -14,5 +14,6 @@ from .surfaces import (INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRot
 from .identify import OffRotorModel, OffRotorResult, identify_off_rotor
 
 __all__ = ["INFLOW_STATES", "VELOCITY_COMPONENTS", "OffRotorError", "OffRotorSettings", "OffRotorSurface",
-           "fit_off_rotor", "reduce_off_rotor", "gain_delay_structure", "horizontal_tail", "wake_exposure", "wing_under_hub",
+           "fit_off_rotor", "reduce_off_rotor", "gain_delay_structure", "horizontal_tail", "wake_exposure",
+           "wing_under_hub",
            "OffRotorModel", "OffRotorResult", "identify_off_rotor"]

@@ -42,7 +42,8 @@ import pandas as pd
 from ..excitation import ExcitationSettings
 
 __all__ = ["OffRotorError", "OffRotorSurface", "OffRotorSettings", "horizontal_tail", "wing_under_hub",
-           "gain_delay_structure", "fit_off_rotor", "reduce_off_rotor", "wake_exposure", "INFLOW_STATES", "VELOCITY_COMPONENTS",
+           "gain_delay_structure", "fit_off_rotor", "reduce_off_rotor", "wake_exposure", "INFLOW_STATES",
+           "VELOCITY_COMPONENTS",
            "UH60_STABILATOR_ASPECT_RATIO", "PUBLISHED_HOVER"]
 
 #: Model inputs, the rotor inflow harmonics, in the order of Eqs. 2.39-2.40.
