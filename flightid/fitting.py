@@ -345,19 +345,23 @@ class _Problem:
 
     def _penalty_gradient(self, x):
         """d(stability penalty)/dx (:func:`flightid.sensitivity._penalty_gradient`)."""
-        return _penalty_gradient(lambda v: self.residuals(v, with_penalty=True)[-1], x)
+        return _penalty_gradient(lambda v: self._penalty(dict(zip(self.free, v))), x)
 
     def residuals(self, x, with_penalty=True):
         vals = dict(zip(self.free, x))
         h = self.structure.frequency_response(self.omega, vals)
         parts = [_pair_residual(h[p.i, p.j, sl], p.h, p.coh) for p, sl in zip(self.pairs, self.slices)]
         if with_penalty and self.has_dynamics:
-            try:
-                worst = np.max(self.structure.poles(vals).real) + self.margin + self.buffer
-            except IdentificationError:   # e.g. a singular M on the way: no state-space form
-                worst = 1.0
-            parts.append(np.array([self.weight * max(0.0, worst)]))
+            parts.append(np.array([self._penalty(vals)]))
         return np.concatenate(parts)
+
+    def _penalty(self, vals):
+        """The stability penalty (§6.4.1) at the parameter values ``vals`` (a dict)."""
+        try:
+            worst = np.max(self.structure.poles(vals).real) + self.margin + self.buffer
+        except IdentificationError:   # e.g. a singular M on the way: no state-space form
+            worst = 1.0
+        return self.weight * max(0.0, worst)
 
     def _dead(self, x):
         h = self.structure.frequency_response(self.omega, dict(zip(self.free, x)))
