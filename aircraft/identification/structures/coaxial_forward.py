@@ -102,7 +102,7 @@ class CoaxialForward12State(InflowStructure):
     #: the reduction's first refit crawled for over 34 min with scipy's default
     #: budget of 200 x (n + 1). The analytic Jacobian (one model evaluation per
     #: Jacobian instead of one per parameter) makes a refit of the 180 parameters
-    #: about 15x faster than finite differences (``benchmarks/coaxial_forward_refit.py``),
+    #: about 10x faster (CPU time) than finite differences (``benchmarks/coaxial_forward_refit.py``),
     #: so that the reduction runs to completion.
     fit_options = {"max_nfev": 150, "jacobian": "analytic"}
 
