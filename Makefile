@@ -34,6 +34,7 @@ bench: $(STAMP)
 	MPLBACKEND=Agg $(PY) benchmarks/identification.py
 	MPLBACKEND=Agg $(PY) benchmarks/wake.py
 	MPLBACKEND=Agg $(PY) benchmarks/dmo.py
+	MPLBACKEND=Agg $(PY) benchmarks/coaxial_forward_refit.py
 
 results: $(STAMP)
 	MPLBACKEND=Agg $(PY) -m studies.cli results

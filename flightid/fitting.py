@@ -24,10 +24,11 @@ from .degeneracy import (DegeneracyReport, MultiStartReport, NoInformationError,
                          hessian_report, multistart_report, square_components)
 from .errors import IdentificationError, InputValueError, UnstableModelError
 from .response import MeasuredResponse
+from .sensitivity import _cramer_rao_insensitivity, _jacobian, _penalty_gradient, _residual_jacobian
 from .statistics import parameter_statistics, residual_scaled_errors
 from .structures import ModelStructure
 
-__all__ = ["fit", "FitResult", "cifer_cost", "coherence_weight", "COHERENCE_FLOOR"]
+__all__ = ["fit", "FitResult", "cifer_cost", "coherence_weight", "COHERENCE_FLOOR", "JACOBIANS"]
 
 W_GAIN = 1.0
 W_PHASE = 0.01745
@@ -35,6 +36,10 @@ W_PHASE = 0.01745
 #: carry information; below 0.2 the weight W_gamma is < 8 % of its maximum and
 #: the estimate is mostly noise (Tischler & Remple put the usable floor at 0.4-0.6).
 COHERENCE_FLOOR = 0.2
+#: How :func:`fit` differentiates the residual: scipy's forward differences in the
+#: optimizer and central differences for the bounds (the default), or the
+#: structure's analytic derivatives (:mod:`flightid.sensitivity`).
+JACOBIANS = ("finite-difference", "analytic")
 
 
 def coherence_weight(coherence):
@@ -304,7 +309,7 @@ class _Problem:
     """The weighted CIFER residual of a structure over sampled pairs, with the
     stability penalty of §6.4.1 (one model evaluation over all pairs' grids)."""
 
-    def __init__(self, structure, pair_data, stability_margin):
+    def __init__(self, structure, pair_data, stability_margin, jacobian="finite-difference"):
         self.structure = structure
         self.free = structure.free_names
         self.pairs = pair_data
@@ -320,18 +325,43 @@ class _Problem:
         self.buffer = 1e-4 * max(1.0, abs(stability_margin))
         self.weight = 1e3
         self.lower = np.array([0.0 if n in structure.delay_names else -np.inf for n in self.free])
+        # analytic only where the structure's derivatives describe its response
+        self.analytic = jacobian == "analytic" and structure._has_sensitivities()
+        if self.analytic:
+            self._maps = structure._reference_maps(self.free)
+            self._weights = []
+            for p in pair_data:
+                wg = np.sqrt(20.0 / p.h.size * coherence_weight(p.coh))
+                self._weights.append((wg * np.sqrt(W_GAIN), wg * np.sqrt(W_PHASE)))
+
+    def jacobian(self, x, with_penalty=True):
+        """d(residuals)/dx: analytic where available, else central differences."""
+        if not self.analytic:
+            return _jacobian(lambda v: self.residuals(v, with_penalty=with_penalty), x)
+        jac = _residual_jacobian(self.structure, dict(zip(self.free, x)), self.pairs, self._weights, self._maps)
+        if with_penalty and self.has_dynamics:
+            jac = np.vstack([jac, self._penalty_gradient(x)[None, :]])
+        return jac
+
+    def _penalty_gradient(self, x):
+        """d(stability penalty)/dx (:func:`flightid.sensitivity._penalty_gradient`)."""
+        return _penalty_gradient(lambda v: self._penalty(dict(zip(self.free, v))), x)
 
     def residuals(self, x, with_penalty=True):
         vals = dict(zip(self.free, x))
         h = self.structure.frequency_response(self.omega, vals)
         parts = [_pair_residual(h[p.i, p.j, sl], p.h, p.coh) for p, sl in zip(self.pairs, self.slices)]
         if with_penalty and self.has_dynamics:
-            try:
-                worst = np.max(self.structure.poles(vals).real) + self.margin + self.buffer
-            except IdentificationError:   # e.g. a singular M on the way: no state-space form
-                worst = 1.0
-            parts.append(np.array([self.weight * max(0.0, worst)]))
+            parts.append(np.array([self._penalty(vals)]))
         return np.concatenate(parts)
+
+    def _penalty(self, vals):
+        """The stability penalty (§6.4.1) at the parameter values ``vals`` (a dict)."""
+        try:
+            worst = np.max(self.structure.poles(vals).real) + self.margin + self.buffer
+        except IdentificationError:   # e.g. a singular M on the way: no state-space form
+            worst = 1.0
+        return self.weight * max(0.0, worst)
 
     def _dead(self, x):
         h = self.structure.frequency_response(self.omega, dict(zip(self.free, x)))
@@ -375,8 +405,9 @@ class _Problem:
             x = self.revive(x)
         self.weight = 1e3
         for _ in range(4):
-            sol = least_squares(self.residuals, x, bounds=(self.lower, np.full_like(x, np.inf)),
-                                x_scale="jac", method="trf", max_nfev=max_nfev or 200 * (len(x) + 1),
+            sol = least_squares(self.residuals, x, jac=self.jacobian if self.analytic else "2-point",
+                                bounds=(self.lower, np.full_like(x, np.inf)), x_scale="jac", method="trf",
+                                max_nfev=max_nfev or 200 * (len(x) + 1),
                                 xtol=1e-12, ftol=1e-12)
             x = sol.x
             fitted = self.structure.with_values(dict(zip(self.free, x)))
@@ -405,7 +436,8 @@ def _start_points(x0, lower, starts, seed, spread):
 def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=None,
         n_omega=20, coherence_min=0.6, stability_margin=0.0, require_stable=True,
         max_nfev=None, starts=1, seed=None, start_spread=0.5, square_blocks=None,
-        multistart_cost_tol=None, multistart_parameter_rtol=0.02, revive_dead_pairs=False) -> FitResult:
+        multistart_cost_tol=None, multistart_parameter_rtol=0.02, revive_dead_pairs=False,
+        jacobian="finite-difference") -> FitResult:
     """Minimise the CIFER cost of ``structure`` against measured responses.
 
     Parameters
@@ -458,6 +490,15 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
         at -inf dB with zero gradient. With True, zero-valued parameters that
         feed such a pair start at the data's median magnitude with the better
         sign (see ``_Problem.revive``); default False keeps the given start.
+    jacobian : {"finite-difference", "analytic"}
+        How the residual is differentiated (:data:`JACOBIANS`). "analytic" uses the
+        structure's exact derivatives (state-space, M/Lbar, gain/delay forms with
+        exact delays; :mod:`flightid.sensitivity`) in the optimizer and for the
+        bounds: one evaluation per Jacobian instead of one per parameter, the way to
+        refit structures with a hundred or more free parameters. A structure
+        without them (e.g. a subclass adding a term to its response) falls back to
+        differences. The optimum agrees with the default's to the optimizer's
+        tolerance, not bit for bit.
 
     Returns
     -------
@@ -486,6 +527,8 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     >>> {k: round(v, 1) for k, v in result.structure.values.items()}, bool(result.J_ave < 1)
     ({'f': -2.0, 'g': 4.0}, True)
     """
+    if not (isinstance(jacobian, str) and jacobian in JACOBIANS):
+        raise InputValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
     free = structure.free_names
     if not free:
         raise IdentificationError("the structure has no free parameters")
@@ -516,14 +559,14 @@ def fit(structure: ModelStructure, responses, *, pairs=None, frequency_ranges=No
     with threadpool_limits(1):
         return _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable,
                     max_nfev, starts, seed, start_spread, square_blocks, multistart_cost_tol,
-                    multistart_parameter_rtol, revive_dead_pairs)
+                    multistart_parameter_rtol, revive_dead_pairs, jacobian)
 
 
 def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, require_stable, max_nfev,
          starts, seed, start_spread, square_blocks, multistart_cost_tol, multistart_parameter_rtol,
-         revive_dead_pairs):
+         revive_dead_pairs, jacobian):
     free = structure.free_names
-    problem = _Problem(structure, pair_data, stability_margin)
+    problem = _Problem(structure, pair_data, stability_margin, jacobian)
     x0 = np.array([structure.values[n] for n in free])
     records, outcomes, first_error = [], [], None
     for k, xs in enumerate(_start_points(x0, problem.lower, starts, seed, start_spread)):
@@ -559,7 +602,7 @@ def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, requ
     cost_table["J_ave"] = j_ave
     cost_table.attrs["J_ave"] = j_ave
 
-    jac = _jacobian(lambda x: problem.residuals(x, with_penalty=False), sol.x)
+    jac = problem.jacobian(sol.x, with_penalty=False)
     cr, ins = _cramer_rao_insensitivity(None, sol.x, jac=jac)
     report = hessian_report(jac, free, sol.x)
     ranges = {(p.output, p.input): (p.omega[0], p.omega[-1]) for p in pair_data}
@@ -594,40 +637,3 @@ def _fit(structure, sources, pair_data, skipped, n_omega, stability_margin, requ
     data_out = sources[0] if len(sources) == 1 else sources
     return FitResult(fitted, table, cost_table, j_ave, data_out, success, message, n_omega, pair_data,
                      degeneracy=report, multistart=multistart, skipped_pairs=skipped)
-
-
-def _jacobian(residual_fn, x):
-    """Central-difference Jacobian of the residual vector."""
-    r0 = residual_fn(x)
-    jac = np.empty((r0.size, x.size))
-    for k in range(x.size):
-        h = 1e-6 * max(1.0, abs(x[k]))
-        e = np.zeros_like(x)
-        e[k] = h
-        jac[:, k] = (residual_fn(x + e) - residual_fn(x - e)) / (2 * h)
-    return jac
-
-
-def _cramer_rao_insensitivity(residual_fn, x, jac=None):
-    """Eqs. 3.15-3.16 with H = d2 J_sum / dTheta2 ~ 2 Jr^T Jr (Gauss-Newton).
-
-    Returns the *un-normalised* (2 sqrt(inv(H)_ii), 1/sqrt(H_ii)) per parameter.
-    """
-    if jac is None:
-        jac = _jacobian(residual_fn, x)
-    hess = 2.0 * jac.T @ jac
-    diag = np.diag(hess)
-    ins = np.where(diag > 0, 1.0 / np.sqrt(np.maximum(diag, 1e-300)), np.inf)
-    # covariance by symmetric eigendecomposition: a direction the data cannot
-    # see (near-zero eigenvalue) must give a huge bound, never a clipped 0
-    # (inverting an ill-conditioned H directly can yield negative diagonals)
-    eigval, eigvec = np.linalg.eigh(hess)
-    if not eigval.max() > 0:
-        # the cost does not depend on any free parameter (e.g. a gain fixed at 0
-        # multiplies them all): every bound is unbounded
-        return np.full(x.size, np.inf), ins
-    floor = eigval.max() * 1e-14
-    with np.errstate(over="ignore"):
-        cov_diag = np.sum(eigvec ** 2 / np.maximum(eigval, floor)[None, :], axis=1)
-    cr = 2.0 * np.sqrt(cov_diag)
-    return cr, ins

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import IdentificationError
-from .structures import ModelStructure, _fgc_response
+from .structures import ModelStructure, _fgc_factors, _fgc_response, _unit_sensitivity
 
 __all__ = ["StateSpaceStructure"]
 
@@ -90,3 +90,16 @@ class StateSpaceStructure(ModelStructure):
     def _abcd(self, mats):
         d = mats.get("D", np.zeros((len(self.outputs), len(self.inputs))))
         return mats["F"], mats["G"], mats["C"], d
+
+    def _entry_sensitivities(self, mats, s, i, j):
+        f, g, c = mats["F"], mats["G"], mats["C"]
+        row, col = _fgc_factors(f, g, c, s, i, j)
+        out = {"F": row[:, :, None] * col[:, None, :], "G": np.zeros((s.size,) + g.shape, dtype=complex),
+               "C": np.zeros((s.size,) + c.shape, dtype=complex)}
+        out["G"][:, :, j] = row
+        out["C"][:, i, :] = col          # dU_ij/dC_ib = (R G)_bj
+        u = row @ g[:, j]
+        if "D" in mats:
+            out["D"] = _unit_sensitivity(mats["D"].shape, s.size, i, j)
+            u = u + mats["D"][i, j]
+        return u, out

@@ -166,6 +166,64 @@ class ModelStructure:
         vals = self.values if values is None else {**self.values, **values}
         return {k: p.build(vals) for k, p in self._patterns.items()}
 
+    # -- derivatives (the analytic Jacobian of :func:`flightid.fit`) ------------
+    def _entry_sensitivities(self, mats, s, i, j):
+        """The undelayed response's element (i, j) at the Laplace variables ``s``
+        (seconds), (n_w,), and its derivatives with respect to the entries of every
+        non-delay pattern, ``{label: (n_w, rows, cols) complex}``. None where a
+        structure does not give them."""
+        return None
+
+    def _has_sensitivities(self):
+        """True when :meth:`_entry_sensitivities` describes this class's response: it is
+        defined below every method that shapes the response (a subclass that adds a
+        term to ``_undelayed`` without its derivatives falls back to differences)."""
+        mro = type(self).__mro__
+
+        def owner(name):
+            return next(k for k in mro if name in vars(k))
+        sens = owner("_entry_sensitivities")
+        if sens is ModelStructure:
+            return False
+        return all(mro.index(sens) <= mro.index(owner(n))
+                   for n in ("_undelayed", "frequency_response", "matrices", "_s_model", "_delays"))
+
+    def _reference_maps(self, free):
+        """{label: (rows, cols, P)} of the pattern entries that are free parameters, with
+        P (n_refs, n_free) the signed map from entries to parameters (ties add up)."""
+        col = {n: k for k, n in enumerate(free)}
+        maps = {}
+        for label, pat in self._patterns.items():
+            refs = [(a, b, col[n], sg) for a, b, n, sg in pat.refs if n in col]
+            if not refs:
+                continue
+            a, b, k, sg = (np.array(v) for v in zip(*refs))
+            proj = np.zeros((len(refs), len(free)))
+            proj[np.arange(len(refs)), k] = sg
+            # untied entries (one per parameter) are scattered, ties summed through proj
+            unique = np.unique(k).size == k.size
+            maps[label] = (a.astype(int), b.astype(int), proj, k.astype(int), sg.astype(float), unique)
+        return maps
+
+    def _pair_derivatives(self, mats, s, i, j, maps):
+        """(H_ij, dH_ij/dp) at ``s``: the delayed response (n_w,) and its derivatives
+        (n_w, n_free) with respect to the free parameters of ``maps``."""
+        u, sens = self._entry_sensitivities(mats, s, i, j)
+        e = np.exp(-self._delays(mats)[i, j] * s)
+        n_free = next(iter(maps.values()))[2].shape[1] if maps else 0
+        dh = np.zeros((s.size, n_free), dtype=complex)
+        for label, (a, b, proj, k, sg, unique) in maps.items():
+            if label == self._delay_label:
+                hit = (a == i) & (b == j)
+                if np.any(hit):
+                    # d/dtau of exp(-tau s) is -s exp(-tau s)
+                    dh += np.outer(-s * u * e, proj[hit].sum(axis=0))
+            elif unique:
+                dh[:, k] += sens[label][:, a, b] * (sg[None, :] * e[:, None])
+            else:
+                dh += (sens[label][:, a, b] * e[:, None]) @ proj
+        return u * e, dh
+
     # -- responses ------------------------------------------------------------
     def _s_model(self, s):
         """The single place where azimuth time is converted: d/dpsi = (1/Omega) d/dt."""
@@ -309,6 +367,14 @@ class MLTauStructure(ModelStructure):
         b = scale * minv
         return a, b, self.C, np.zeros((len(self.outputs), len(self.inputs)))
 
+    def _entry_sensitivities(self, mats, s, i, j):
+        # U = C X^-1 with X = M sm + Lbar: dU = -C X^-1 dX X^-1
+        m, lb = mats["M"], mats["L"]
+        sm = self._s_model(s)
+        row, col = _ml_factors(m, lb, self.C, sm, i, j)
+        d_l = -row[:, :, None] * col[:, None, :]
+        return row[:, j], {"M": sm[:, None, None] * d_l, "L": d_l}
+
 
 def _fgc_response(f, g, c, d, sm):
     """C (sm I - F)^-1 G (+ D) at the model-time Laplace variables ``sm``: (n_out, n_in, n_w)."""
@@ -329,6 +395,34 @@ def _fgc_response(f, g, c, d, sm):
                               np.broadcast_to(g, (sm.size,) + g.shape))
         out = np.moveaxis(c @ res, 0, -1)
     return out + d[:, :, None] if d is not None else out
+
+
+
+def _fgc_factors(f, g, c, sm, i, j):
+    """Row i of C (sm I - F)^-1 and column j of (sm I - F)^-1 G at each ``sm``: (n_w, n) each.
+    dU_ij/dF_ab is their product row[a] col[b] (d R = R dF R)."""
+    x = sm[:, None, None] * np.eye(f.shape[0])[None] - f[None]
+    row = np.linalg.solve(np.swapaxes(x, 1, 2), np.broadcast_to(c[i], (sm.size, c.shape[1]))[..., None])[..., 0]
+    col = np.linalg.solve(x, np.broadcast_to(g[:, j], (sm.size, g.shape[0]))[..., None])[..., 0]
+    return row, col
+
+
+def _unit_sensitivity(shape, n_w, i, j):
+    out = np.zeros((n_w,) + shape, dtype=complex)
+    out[:, i, j] = 1.0
+    return out
+
+
+
+def _ml_factors(m, lb, c, sm, i, j):
+    """Row i of C X^-1 and column j of X^-1, X = M sm + Lbar, at each ``sm``: (n_w, n) each."""
+    x = sm[:, None, None] * m[None] + lb[None]
+    n_w, n = sm.size, m.shape[0]
+    row = np.linalg.solve(np.swapaxes(x, 1, 2), np.broadcast_to(c[i], (n_w, n))[..., None])[..., 0]
+    unit = np.zeros(n)
+    unit[j] = 1.0
+    col = np.linalg.solve(x, np.broadcast_to(unit, (n_w, n))[..., None])[..., 0]
+    return row, col
 
 
 class FGCStructure(ModelStructure):
@@ -373,6 +467,17 @@ class FGCStructure(ModelStructure):
         d = mats.get("D", np.zeros((len(self.outputs), len(self.inputs))))
         return scale * mats["F"], scale * mats["G"], self.C, d
 
+    def _entry_sensitivities(self, mats, s, i, j):
+        f, g = mats["F"], mats["G"]
+        row, col = _fgc_factors(f, g, self.C, self._s_model(s), i, j)
+        out = {"F": row[:, :, None] * col[:, None, :], "G": np.zeros((s.size,) + g.shape, dtype=complex)}
+        out["G"][:, :, j] = row
+        u = row @ g[:, j]
+        if "D" in mats:
+            out["D"] = _unit_sensitivity(mats["D"].shape, s.size, i, j)
+            u = u + mats["D"][i, j]
+        return u, out
+
 
 class GainDelayStructure(ModelStructure):
     """Static output equation ``y_i(t) = sum_j K_ij u_j(t - tau_ij)`` (Eqs. 2.39-2.40).
@@ -394,3 +499,7 @@ class GainDelayStructure(ModelStructure):
 
     def _abcd(self, mats):
         return np.zeros((0, 0)), np.zeros((0, len(self.inputs))), np.zeros((len(self.outputs), 0)), mats["K"]
+
+    def _entry_sensitivities(self, mats, s, i, j):
+        u = np.full(s.size, mats["K"][i, j], dtype=complex)
+        return u, {"K": _unit_sensitivity(mats["K"].shape, s.size, i, j)}

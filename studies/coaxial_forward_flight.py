@@ -81,8 +81,12 @@ def settings_for(small=False, sweep_s=40.0, reduce=True, near_wake_only=False):
 
 
 def parameter_table(model):
-    """Our parameters (value, status, CR %, insensitivity %) beside Eqs. 6.12-6.13 per d/dpsi."""
+    """Our parameters (value, status, CR %, insensitivity %, trust verdict and its reason)
+    beside Eqs. 6.12-6.13 per d/dpsi."""
     params = model.parameters
+    verdicts = model.trust.table.set_index("parameter")
+    params["verdict"] = params.parameter.map(verdicts.verdict).fillna("")
+    params["reason"] = params.parameter.map(verdicts.reason).fillna("")
     # the printed model fills the whole pattern: map it with the full structure (the
     # near-wake-only half's parameters carry the same names)
     ours = CoaxialForward12State("rotor")
@@ -104,9 +108,10 @@ def main(argv=None):
                              "the per-rotor lift offsets the aircraft has there")
     parser.add_argument("--balanced-wake", action="store_true",
                         help="trim the wake to zero hub moments instead (the earlier study)")
-    parser.add_argument("--max-reduction-steps", type=int, default=100,
-                        help="removals tried by the automatic reduction (one refit each)")
-    parser.add_argument("--reduction-batch", type=int, default=1,
+    parser.add_argument("--max-reduction-steps", type=int, default=1000,
+                        help="removals tried by the automatic reduction (one refit each); the default lets "
+                             "it run to completion")
+    parser.add_argument("--reduction-batch", type=int, default=10,
                         help="parameters the reduction removes together per refit (1: one at a time)")
     parser.add_argument("--jobs", type=int, default=2, help="wake worker processes")
     parser.add_argument("--no-cache", action="store_true",
@@ -159,7 +164,12 @@ def main(argv=None):
     print(f"J_ave = {model.J_ave:.1f} over {len(model.cost_table)} responses (Table 6.3: 77.0); "
           f"{len(free)} free parameters of {len(params)} (dissertation: ~90 of 180 kept)")
     print(f"max CR {free.cramer_rao_pct.max():.3g} %, max insensitivity {free.insensitivity_pct.max():.3g} % "
-          f"-> {'trusted' if model.trusted else 'NOT trusted'}")
+          f"-> {'trusted' if model.trusted else 'NOT trusted'}; verdicts {free.verdict.value_counts().to_dict()}")
+    for why in model.trust.failures:
+        print(f"  not trusted: {why[:300]}")
+    untried = model.provenance.get("reduction_untried")
+    if untried:
+        print(f"the reduction stopped at its step bound with {len(untried)} candidates untried: {untried[:10]}")
     print(model.verification_table.to_string(index=False, float_format=fmt))
     red = model.provenance.get("reduction_wall_s")
     print(f"identification wall time {t_id:.0f} s" + (f" (reduction {red:.0f} s)" if red is not None else ""))

@@ -6,13 +6,16 @@ rotor at C_T = 0.0061, in hover and at mu = 0.1 -> one swashplate sweep per cont
 with the wake's velocity recorded at 7 points along the horizontal tail's quarter
 chord (the configuration's ``htail_position``) and 7 along a wing 0.25 R under the
 hub -> joint input-output vbar/lam (Eq. 4.9) -> Eq. 2.39 (tail) and Eq. 2.40 (wing)
-fitted over 1-5 rad/s -> verification on a doublet per control (not used in the
+fitted over 1-5 rad/s -> reduced (a delay or gain the data do not support is removed,
+Fig. 6.1) and judged by the trust rule (CR, insensitivity and verdict per parameter) ->
+verification on a doublet per control (not used in the
 fit) beside the zero-input noise floor. Whether the tail sees the wake is computed
 from the wake's skew (:func:`aircraft.identification.wake_exposure`), at the trimmed
 inflow and over mu with momentum theory. The dissertation's hover models (§4.6.1,
 Eq. 4.10) are written beside ours as reference columns.
 
-Writes under ``results/off_rotor_models/``: gains_delays.csv, verification.csv,
+Writes under ``results/off_rotor_models/``: gains_delays.csv, trust.csv (per parameter: value,
+status, CR %, insensitivity %, verdict, reason), reduction_log.csv, verification.csv,
 exposure.csv, exposure_vs_mu.csv, dissertation_hover.csv, wall_times.csv, verification_<surface>_mu<mu>.png,
 bode_<surface>_mu<mu>.png, exposure.png.
 
@@ -114,6 +117,9 @@ def run_study(wake=None, *, mus=(0.0, 0.1), ct=CT, settings=None, out_dir="resul
             print(res.summary())
             print(f"mu = {mu:.2f}: {walls[-1]:.0f} s (wake runs or cache reads, fits)")
     gains = pd.concat([r.to_pandas() for r in results], ignore_index=True)
+    trust = pd.concat([r.parameter_table for r in results], ignore_index=True)
+    logs = [m.reduction.log.assign(surface=name, mu=r.mu) for r in results for name, m in r.models.items()
+            if m.reduction is not None]
     ver = pd.concat([r.verification_table for r in results], ignore_index=True)
     exposure = pd.concat([m.exposure.assign(surface=name, mu=r.mu, lam0_trim=m.trim_inflow["lam0"],
                                             vx_trim=m.trim_velocity["x"], vy_trim=m.trim_velocity["y"],
@@ -122,6 +128,9 @@ def run_study(wake=None, *, mus=(0.0, 0.1), ct=CT, settings=None, out_dir="resul
     curves = pd.concat([exposure_curve(cfg, s, ct, np.round(np.linspace(0.0, 0.4, 41), 3)) for s in surfaces],
                        ignore_index=True)
     gains.to_csv(out / "gains_delays.csv", index=False)
+    trust.to_csv(out / "trust.csv", index=False)
+    if logs:
+        pd.concat(logs, ignore_index=True).to_csv(out / "reduction_log.csv", index=False)
     # per condition: wake trim and records (or cache reads), fits, verification
     pd.DataFrame({"mu": list(mus), "wall_s": walls, "wake_cache": cache_dir is not None}).to_csv(
         out / "wall_times.csv", index=False)
@@ -139,6 +148,9 @@ def run_study(wake=None, *, mus=(0.0, 0.1), ct=CT, settings=None, out_dir="resul
               f"{ws.n_elements} elements; sweeps {settings.sweep_s:g} s; fit {settings.fit_range} rad/s")
         tic = ver.groupby(["surface", "mu", "output"]).agg(TIC=("TIC", "mean"), TIC_floor=("TIC_noise_floor", "mean"),
                                                            signal_to_floor=("signal_to_floor", "mean"))
+        print("trust verdicts (free parameters after the reduction):")
+        print(trust[trust.status == "free"][["surface", "mu", "parameter", "value", "cramer_rao_pct",
+                                             "insensitivity_pct", "verdict"]].to_string(index=False, float_format=fmt))
         print("doublet TIC (mean over the three doublets):")
         print(tic.to_string(float_format=fmt))
         for name, df in curves.groupby("surface"):

@@ -158,7 +158,7 @@ def forward_trim_request(ct, *, lift_offset=0.0, tol=1e-4, max_iter=30):
 
 def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, ct=None,
                              structure=None, settings=None, n_jobs=2, cache_dir="default", progress=True,
-                             name=None, max_reduction_steps=100, lift_offset=0.0, reduction_batch=1):
+                             name=None, max_reduction_steps=1000, lift_offset=0.0, reduction_batch=1):
     """Identify the 200 kt coaxial inflow model (Eq. 6.5 structure) from our free wake.
 
     Parameters
@@ -189,7 +189,10 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         Removals tried by the automatic reduction (Fig. 6.1; one refit each); 0
         skips it, as ``settings.reduce=False`` does. The pipeline fits, then the
         reduction runs here with this bound (``provenance["max_reduction_steps"]``);
-        the doublet verification is then redone on the reduced model.
+        the doublet verification is then redone on the reduced model. The default
+        lets it run to completion (every candidate tried; the structure's analytic
+        Jacobian makes a refit a few seconds); ``provenance["reduction_untried"]``
+        lists the candidates a smaller bound left untried.
     reduction_batch : int
         Candidates the reduction removes together per refit (:func:`flightid.reduce`
         ``batch``): the 180-parameter start removes ~100 parameters, one refit
@@ -245,10 +248,21 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     digest, payload = identification_hash(config, condition, structure, settings, trim=request)
     provenance = {**model.provenance, "reduction": "aircraft.identification.coaxial_forward_flight",
                   "max_reduction_steps": max_reduction_steps, "reduction_batch": reduction_batch,
+                  "reduction_untried": _untried(reduction, s, structure.protected),
                   "reduction_wall_s": round(time.perf_counter() - t0, 1)}
     return dataclasses.replace(model, fit=reduction.result, reduction=reduction, verification=check,
                                noise_floor=floor, settings=settings, settings_hash=digest,
                                hash_payload=payload, provenance=provenance)
+
+
+def _untried(reduction, s, protected):
+    """Free parameters still over a threshold that the reduction never tried to remove
+    (empty when it ran to completion)."""
+    table = reduction.result.parameters
+    free = table[table.status == "free"]
+    over = free[(free.insensitivity_pct > s.insensitivity_max) | (free.cramer_rao_pct > s.cramer_rao_max)]
+    tried = {n.strip() for names in reduction.log.parameter for n in str(names).split(",")}
+    return [n for n in over.parameter if n not in tried and n not in set(protected)]
 
 
 def _verification_runs(config, condition, request, s, structure, cache_dir):

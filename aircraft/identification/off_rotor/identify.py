@@ -14,8 +14,10 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
+from ..trust import trust_check
 from .surfaces import (_KEY, INFLOW_STATES, VELOCITY_COMPONENTS, OffRotorError, OffRotorSettings,
-                        OffRotorSurface, fit_off_rotor, horizontal_tail, wake_exposure, wing_under_hub)
+                        OffRotorSurface, fit_off_rotor, horizontal_tail, reduce_off_rotor, wake_exposure,
+                        wing_under_hub)
 
 __all__ = ["OffRotorModel", "OffRotorResult", "identify_off_rotor"]
 
@@ -30,7 +32,7 @@ class OffRotorModel:
     mu : float
         Advance ratio of the flight condition [-].
     fit : flightid.FitResult
-        The fit (gains [-], delays [s], Cramér-Rao and insensitivity %, costs).
+        The (reduced) fit (gains [-], delays [s], Cramér-Rao and insensitivity %, costs).
     responses : flightid.MeasuredResponse
         The joint input-output ``vbar / lam`` responses fitted.
     verification : dict
@@ -44,6 +46,9 @@ class OffRotorModel:
     exposure : pandas.DataFrame
         :func:`wake_exposure` of the surface's points at the trimmed inflow.
     settings : OffRotorSettings
+    reduction : flightid.ReductionResult or None
+        The reduction (its log names what was removed and why), None when
+        ``settings.reduce`` is False.
     """
 
     surface: OffRotorSurface
@@ -56,6 +61,7 @@ class OffRotorModel:
     trim_inflow: dict
     exposure: pd.DataFrame
     settings: OffRotorSettings
+    reduction: object = None
 
     @property
     def form(self):
@@ -75,6 +81,52 @@ class OffRotorModel:
     def delays(self) -> pd.DataFrame:
         """tau [s] element by element (Eq. 2.39: equal down each column)."""
         return self._matrix("tau")
+
+    @property
+    def trust(self):
+        """:func:`aircraft.identification.trust_check` of the model: per-parameter verdicts
+        (ok / kept / fails) and the reasons it is not trusted."""
+        return trust_check(self)
+
+    @property
+    def trusted(self) -> bool:
+        """Whether the model passes the trust rule (:attr:`trust`)."""
+        return self.trust.passes
+
+    def _statuses(self):
+        """{parameter: free / removed / held / not fitted}: removed by the reduction (at 0),
+        held by it at its value (no influence left), or never fitted (no coherent response)."""
+        removed = set(self.reduction.removed) if self.reduction is not None else set()
+        first = self.reduction.initial.structure if self.reduction is not None else self.fit.structure
+        out = {}
+        for n in self.fit.structure.names:
+            if n not in self.fit.structure.fixed:
+                out[n] = "free"
+            elif n in removed:
+                out[n] = "removed"
+            elif n not in first.fixed:
+                out[n] = "held"
+            else:
+                out[n] = "not fitted"
+        return out
+
+    @property
+    def parameter_table(self) -> pd.DataFrame:
+        """One row per parameter: value, status (free / removed / held / not fitted), the
+        Cramér-Rao bound and insensitivity [%] of the free ones, the trust verdict and reason."""
+        p = self.fit.parameters.set_index("parameter")
+        verdicts = self.trust.table.set_index("parameter")
+        status = self._statuses()
+        rows = []
+        for n in self.fit.structure.names:
+            v = verdicts.loc[n] if n in verdicts.index else None
+            rows.append({"surface": self.surface.name, "form": self.form, "mu": self.mu, "parameter": n,
+                         "kind": "delay" if n.startswith("tau") else "gain", "value": p.loc[n, "value"],
+                         "status": status[n], "cramer_rao_pct": p.loc[n, "cramer_rao_pct"],
+                         "insensitivity_pct": p.loc[n, "insensitivity_pct"],
+                         "verdict": v.verdict if v is not None else "", "reason": v.reason if v is not None else "",
+                         "model_trusted": self.trusted})
+        return pd.DataFrame(rows)
 
     @property
     def cost_table(self) -> pd.DataFrame:
@@ -107,9 +159,9 @@ class OffRotorModel:
         return out
 
     def to_pandas(self) -> pd.DataFrame:
-        """One row per gain: surface, mu, output, input, K [-], its CR/insensitivity [%],
-        the delay tau [s] with its CR/insensitivity [%], and whether each was fitted."""
-        p = self.fit.parameters.set_index("parameter")
+        """One row per gain: surface, mu, output, input, K [-], its status (free / removed /
+        held / not fitted), CR/insensitivity [%] and trust verdict, the same for its delay tau [s]."""
+        p = self.parameter_table.set_index("parameter")
         tau_name = (lambda j, c: f"tau{_KEY[j]}") if self.form == "2.39" else (lambda j, c: f"tau{_KEY[j]}{c}")
         rows = []
         for o, c in zip(self.fit.structure.outputs, VELOCITY_COMPONENTS):
@@ -117,8 +169,9 @@ class OffRotorModel:
                 k, t = p.loc[f"K{_KEY[j]}{c}"], p.loc[tau_name(j, c)]
                 rows.append({"surface": self.surface.name, "form": self.form, "mu": self.mu, "output": o,
                              "input": j, "K": k.value, "K_status": k.status, "K_cramer_rao_pct": k.cramer_rao_pct,
-                             "K_insensitivity_pct": k.insensitivity_pct, "tau_s": t.value, "tau_status": t.status,
-                             "tau_cramer_rao_pct": t.cramer_rao_pct, "tau_insensitivity_pct": t.insensitivity_pct})
+                             "K_insensitivity_pct": k.insensitivity_pct, "K_verdict": k.verdict,
+                             "tau_s": t.value, "tau_status": t.status, "tau_cramer_rao_pct": t.cramer_rao_pct,
+                             "tau_insensitivity_pct": t.insensitivity_pct, "tau_verdict": t.verdict})
         return pd.DataFrame(rows)
 
     def plot(self, fig=None):
@@ -151,8 +204,12 @@ class OffRotorModel:
         """Gains, delays, the cost and the verification TICs as text."""
         fmt = lambda v: f"{v:.4g}"   # noqa: E731
         vt = self.verification_table
+        trust = self.trust
+        verdict = "trusted" if trust.passes else "NOT trusted: " + "; ".join(trust.failures)
+        removed = self.reduction.removed if self.reduction is not None else []
         return "\n".join([
-            f"== {self.surface.name} (Eq. {self.form}), mu = {self.mu:.3f}: J_ave = {self.J_ave:.1f}; "
+            f"== {self.surface.name} (Eq. {self.form}), mu = {self.mu:.3f}: J_ave = {self.J_ave:.1f}; {verdict}; "
+            f"removed by the reduction: {removed or 'none'}; "
             f"{100 * self.in_wake:.0f} % of its points in the skewed wake cylinder ==",
             "gains K [-]:", self.gains.to_string(float_format=fmt),
             "delays tau [s]:", self.delays.to_string(float_format=fmt),
@@ -186,6 +243,11 @@ class OffRotorResult:
     def to_pandas(self) -> pd.DataFrame:
         """Every surface's gain/delay table (:meth:`OffRotorModel.to_pandas`), stacked."""
         return pd.concat([m.to_pandas() for m in self.models.values()], ignore_index=True)
+
+    @property
+    def parameter_table(self) -> pd.DataFrame:
+        """Every surface's parameter table with trust verdicts (:attr:`OffRotorModel.parameter_table`)."""
+        return pd.concat([m.parameter_table for m in self.models.values()], ignore_index=True)
 
     @property
     def verification_table(self) -> pd.DataFrame:
@@ -311,6 +373,11 @@ def identify_off_rotor(config, condition=None, surfaces=None, *, ct=None, trim=N
         result = fit_off_rotor(resp, s.form, fit_range=settings.fit_range, outputs=outs,
                                n_omega=settings.n_omega, coherence_min=settings.coherence_min,
                                starts=settings.starts, seed=0)
+        reduction = None
+        if settings.reduce:
+            reduction = reduce_off_rotor(result, resp, insensitivity_max=settings.insensitivity_max,
+                                         cramer_rao_max=settings.cramer_rao_max, starts=settings.starts, seed=0)
+            result = reduction.result
         model_ss = result.structure.to_statespace(pade_order=settings.pade_order)
 
         def check(df):
@@ -323,6 +390,7 @@ def identify_off_rotor(config, condition=None, surfaces=None, *, ct=None, trim=N
             surface=s, mu=mu, fit=result, responses=resp, verification=verification, noise_floor=check(zero),
             trim_velocity={c: float(ref[f"v{c}_{s.name}"]) for c in VELOCITY_COMPONENTS},
             trim_inflow={j: float(ref[j]) for j in INFLOW_STATES},
-            exposure=wake_exposure(s, config, mu, float(ref["lam0"]), mu_z=mu_z), settings=settings)
+            exposure=wake_exposure(s, config, mu, float(ref["lam0"]), mu_z=mu_z), settings=settings,
+            reduction=reduction)
     return OffRotorResult(models=models, condition=condition, mu=mu, trim=runs["trim"],
                           wall_s=time.perf_counter() - t_start, settings=settings)

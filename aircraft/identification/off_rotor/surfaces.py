@@ -42,7 +42,8 @@ import pandas as pd
 from ..excitation import ExcitationSettings
 
 __all__ = ["OffRotorError", "OffRotorSurface", "OffRotorSettings", "horizontal_tail", "wing_under_hub",
-           "gain_delay_structure", "fit_off_rotor", "wake_exposure", "INFLOW_STATES", "VELOCITY_COMPONENTS",
+           "gain_delay_structure", "fit_off_rotor", "reduce_off_rotor", "wake_exposure", "INFLOW_STATES",
+           "VELOCITY_COMPONENTS",
            "UH60_STABILATOR_ASPECT_RATIO", "PUBLISHED_HOVER"]
 
 #: Model inputs, the rotor inflow harmonics, in the order of Eqs. 2.39-2.40.
@@ -257,6 +258,11 @@ class OffRotorSettings(ExcitationSettings):
         Controls with a verification doublet each.
     starts : int
         Starts of the fit (the data-driven start and seeded scatterings of it).
+    reduce : bool
+        Reduce the fit (:func:`reduce_off_rotor`): delays and gains the data do not
+        support are removed, as for every other identified model.
+    insensitivity_max, cramer_rao_max : float
+        Reduction and trust thresholds [%] (guideline 10 % and 20 %).
 
     Notes
     -----
@@ -276,9 +282,16 @@ class OffRotorSettings(ExcitationSettings):
     controls: tuple = ("theta0", "theta1s", "theta1c")
     doublet_controls: tuple = ("theta0", "theta1s", "theta1c")
     starts: int = 4
+    reduce: bool = True
+    insensitivity_max: float = 10.0
+    cramer_rao_max: float = 20.0
 
     def __post_init__(self):
         super().__post_init__()
+        for name in ("insensitivity_max", "cramer_rao_max"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or not v > 0:
+                raise OffRotorError(f"{name} must be a positive finite number [%], got {v!r}")
         if len(self.controls) < len(INFLOW_STATES):
             raise OffRotorError(f"the joint input-output needs at least {len(INFLOW_STATES)} swept controls "
                                 f"(one per inflow state), got {self.controls!r}")
@@ -418,6 +431,81 @@ def fit_off_rotor(responses, form="2.39", *, fit_range=(1.0, 5.0), outputs=None,
     structure = gain_delay_structure(form, initial, fixed=fixed, outputs=outputs)
     return fit(structure, responses, pairs=pairs, frequency_ranges=(lo, hi), n_omega=n_omega,
                coherence_min=coherence_min, starts=starts, seed=seed)
+
+
+def reduce_off_rotor(fitted, responses, *, insensitivity_max=10.0, cramer_rao_max=20.0, starts=4, seed=0):
+    """Reduce a fitted Eq. 2.39/2.40 model with :func:`flightid.reduce` (Fig. 6.1).
+
+    The worst parameter over the guideline goes first -- a delay sitting at its
+    0 s bound has an unbounded relative Cramér-Rao bound and insensitivity and is
+    removed (fixed at 0 s) when that does not raise the cost -- then the next, each
+    removal kept only if J_ave rises by at most 2 and no single J by more than 10.
+    Same pairs and bands as ``fitted``; the analytic Jacobian makes the refits cheap.
+
+    Parameters
+    ----------
+    fitted : flightid.FitResult
+        A fit of :func:`fit_off_rotor`.
+    responses : flightid.MeasuredResponse
+        The responses it was fitted to.
+    insensitivity_max, cramer_rao_max : float
+        Candidate thresholds [%] (guideline 10 % and 20 %).
+    starts, seed : int
+        Starts of every refit and their seed (as :func:`fit_off_rotor`).
+
+    Returns
+    -------
+    flightid.ReductionResult
+        ``.result`` the reduced fit, ``.removed`` the parameters removed, ``.log``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flightid import MeasuredResponse
+    >>> w = np.geomspace(0.5, 8.0, 60)
+    >>> h = np.zeros((3, 3, w.size), complex)
+    >>> h[2, 0] = 0.9 * np.exp(-0.2j * w)          # vz/lam0 = 0.9 e^(-0.2 s): a real delay
+    >>> h[0, 1] = -0.5 + 0j                         # vx/lam1c = -0.5: no delay at all
+    >>> coherence = np.where(np.abs(h) > 0, 0.99, 0.0)
+    >>> data = MeasuredResponse(h, w, coherence, ["lam0", "lam1c", "lam1s"], ["vx", "vy", "vz"])
+    >>> first = fit_off_rotor(data, "2.40", starts=1)
+    >>> reduction = reduce_off_rotor(first, data, starts=1)
+    >>> reduction.removed, round(reduction.result.structure.values["tau0z"], 3)
+    (['tau1cx'], 0.2)
+    """
+    from flightid import reduce
+    pairs = [(p.output, p.input) for p in fitted.pairs]
+    ranges = {(p.output, p.input): (p.omega[0], p.omega[-1]) for p in fitted.pairs}
+    reduction = reduce(fitted.structure, responses, insensitivity_max=insensitivity_max,
+                       cramer_rao_max=cramer_rao_max, pairs=pairs, frequency_ranges=ranges, n_omega=fitted.n_omega,
+                       starts=starts, seed=seed, jacobian="analytic")
+    return _delays_at_bound_removed(reduction, fitted)
+
+
+#: A delay below this is none [s] (a Padé pole beyond 2e6 rad/s; the structures' own threshold).
+_NO_DELAY_S = 1e-6
+
+
+def _delays_at_bound_removed(reduction, fitted):
+    """A delay the reduction held (no influence left after another removal) while it sat at
+    its 0 s bound is a delay the data do not support: set to 0 s (below 1 us the response
+    is the same to double precision) and logged as removed, with the reason."""
+    result = reduction.result
+    first_fixed = set(fitted.structure.fixed)
+    removed = set(reduction.removed)
+    held = [n for n in result.structure.delay_names if n in result.structure.fixed and n not in first_fixed
+            and n not in removed and abs(result.structure.values[n]) < _NO_DELAY_S]
+    if not held:
+        return reduction
+    was = {n: result.structure.values[n] for n in held}
+    result.structure = result.structure.with_values({n: 0.0 for n in held})
+    result.parameters.loc[result.parameters.parameter.isin(held), "value"] = 0.0
+    rows = [{"parameter": n, "reason": "at its bound", "metric_pct": float("inf"), "J_ave_before": result.J_ave,
+             "J_ave_after": result.J_ave, "max_single_rise": 0.0, "accepted": True, "runaway": False,
+             "note": f"held by the reduction at {was[n]:.3g} s (no influence left): a delay below "
+                     f"{_NO_DELAY_S:g} s is none; removed"} for n in held]
+    reduction.log = pd.concat([reduction.log, pd.DataFrame(rows)], ignore_index=True)
+    return reduction
 
 
 # --------------------------------------------------------------------------- wake exposure

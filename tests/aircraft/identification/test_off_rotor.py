@@ -15,7 +15,8 @@ import pytest
 from scipy import signal
 
 from aircraft.configs import coaxial_compound, uh60_single_rotor
-from aircraft.identification.off_rotor import (OffRotorError, fit_off_rotor, gain_delay_structure, horizontal_tail, wake_exposure, wing_under_hub)
+from aircraft.identification.off_rotor import (OffRotorError, fit_off_rotor, gain_delay_structure, horizontal_tail,
+                                               reduce_off_rotor, wake_exposure, wing_under_hub)
 from aircraft.identification import OffRotorSettings, OffRotorSurface, identify_off_rotor
 from flightid import combine_responses, frequency_response, frequency_sweep, joint_input_output
 
@@ -72,6 +73,53 @@ def test_synthetic_gain_delay_recovered(form):
     big = np.abs(K_TRUE) > 0.1
     np.testing.assert_allclose(mats["tau"][big], tau[big], atol=0.01)
     assert res.J_ave < 5.0      # CIFER: J_ave < 100 is a good fit; a noise-free truth is near 0
+
+
+def test_reduction_removes_zero_delays_and_keeps_real_ones():
+    """Eq. 2.40 on a truth with two zero delays (Eq. 4.10's pattern): the fit leaves them a
+    hair above their 0 s bound with unbounded relative bounds; the reduction removes
+    exactly those (fixed at 0 s, logged as accepted) and keeps the real delays."""
+    tau = np.array([[0.20, 0.50, 0.35], [0.0, 0.45, 0.50], [0.07, 0.15, 0.0]])
+    data = _responses(_simulate(tau))
+    first = fit_off_rotor(data, "2.40", fit_range=(1.0, 5.0))
+    reduction = reduce_off_rotor(first, data)
+    assert sorted(reduction.removed) == ["tau0y", "tau1sz"]
+    values = reduction.result.structure.values
+    assert values["tau0y"] == 0.0 and values["tau1sz"] == 0.0
+    assert {"tau0y", "tau1sz"} <= reduction.result.structure.fixed
+    mats = reduction.result.structure.matrices()
+    # the error budget of test_synthetic_gain_delay_recovered (spectral estimate, interpolated
+    # delays): 10 ms on the delays of the strong gains, 2 % of the largest gain on the gains
+    big = np.abs(K_TRUE) > 0.1
+    np.testing.assert_allclose(mats["tau"][big], tau[big], atol=0.01)
+    np.testing.assert_allclose(mats["K"], K_TRUE, atol=0.02 * np.abs(K_TRUE).max())
+    # removing two parameters that were at zero cannot raise the cost measurably (< 0.01 of a
+    # J_ave ~ 0.1 of a noise-free truth)
+    assert reduction.result.J_ave - first.J_ave < 0.01
+
+
+def test_delay_held_at_its_bound_is_reported_removed():
+    """The reduction holds a parameter a removal left without influence where it is; a
+    delay held a hair above 0 s (the wake's hover tail: 6e-58 s) is no delay: reported
+    removed at exactly 0 s, with the cost unchanged (exp(-1e-30 j w) is 1 in double)."""
+    import pandas as pd
+    from flightid import fit
+    from flightid.reduction import ReductionResult
+    from aircraft.identification.off_rotor.surfaces import _delays_at_bound_removed
+    tau = np.array([[0.20, 0.50, 0.35], [0.0, 0.45, 0.50], [0.07, 0.15, 0.0]])
+    data = _responses(_simulate(tau))
+    first = fit_off_rotor(data, "2.40", fit_range=(1.0, 5.0), starts=1)
+    pairs = [(p.output, p.input) for p in first.pairs]
+    held = fit(first.structure.with_values({"tau0y": 1e-30}).fix(["tau0y"]), data, pairs=pairs,
+               frequency_ranges=(1.0, 5.0))
+    log = pd.DataFrame(columns=["parameter", "reason", "metric_pct", "J_ave_before", "J_ave_after",
+                                "max_single_rise", "accepted", "runaway", "note"])
+    j_before = held.J_ave
+    out = _delays_at_bound_removed(ReductionResult(held, first, log), first)
+    assert out.removed == ["tau0y"]
+    assert out.result.structure.values["tau0y"] == 0.0
+    assert out.result.parameters.set_index("parameter").loc["tau0y", "value"] == 0.0
+    assert out.result.J_ave == j_before
 
 
 def test_gain_delay_structure_names_and_forms():
@@ -223,6 +271,15 @@ def test_identify_off_rotor_pipeline_on_a_synthetic_wake(monkeypatch):
     assert m.trim_velocity["z"] == pytest.approx(0.03, abs=1e-4)     # the constant offset
     table = res.to_pandas()
     assert len(table) == 9 and set(table.K_status) == {"free"}
+    # reduced and judged: every delay of this truth is real (60-300 ms), so nothing is removed,
+    # and every free parameter carries its bounds and a verdict of the trust rule
+    assert m.reduction is not None and m.reduction.removed == []
+    params = res.parameter_table
+    free = params[params.status == "free"]
+    assert len(free) == 12 and free.verdict.isin(["ok", "kept", "fails"]).all()
+    assert np.isfinite(free[["cramer_rao_pct", "insensitivity_pct"]].to_numpy()).all()
+    assert params.model_trusted.iloc[0] == m.trusted == m.trust.passes
+    assert {"K_verdict", "tau_verdict"} <= set(table.columns)
     fig = m.plot()
     assert len(fig.axes) == 9
     assert "tail (Eq. 2.39)" in res.summary()
