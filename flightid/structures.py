@@ -369,11 +369,11 @@ class MLTauStructure(ModelStructure):
 
     def _entry_sensitivities(self, mats, s, i, j):
         # U = C X^-1 with X = M sm + Lbar: dU = -C X^-1 dX X^-1
-        m, lb = mats["M"], mats["L"]
+        m, lb = mats["M"], mats["Lbar"]
         sm = self._s_model(s)
         row, col = _ml_factors(m, lb, self.C, sm, i, j)
         d_l = -row[:, :, None] * col[:, None, :]
-        return row[:, j], {"M": sm[:, None, None] * d_l, "L": d_l}
+        return row[:, j], {"M": sm[:, None, None] * d_l, "Lbar": d_l}
 
 
 def _fgc_response(f, g, c, d, sm):

@@ -220,7 +220,6 @@ def trim(heli: Helicopter, condition=TrimCondition(), tol=1e-9, max_iter=30, *, 
     forward = condition.speed > 0
     coax = cfg.is_coaxial
     # initial guess: momentum inflow, collective from thrust, flap coning from thrust
-    x0 = np.zeros(heli.n_states)
     w_share = cfg.weight / nrot
     loads0 = []
     for rm in heli.rotors:
