@@ -306,9 +306,9 @@ def main(argv=None):
                           ("ID6", "coaxial_hover_6state"),
                           ("IDA", "coaxial_hover_6state_axisymmetric")):
             rec = load_record(name)
-            trusted = trust_check(rec).passes
-            print(f"  {key}: shipped {name} (J_ave {rec.cost_table.J.mean():.1f}, "
-                  f"{'trusted' if trusted else 'NOT trusted: see its CR/insensitivity'})")
+            check = trust_check(rec)
+            why = "trusted" if check.passes else "NOT trusted: " + check.failures[0][:110]
+            print(f"  {key}: shipped {name} (J_ave {rec.cost_table.J.mean():.1f}, {why})")
     else:
         inflows = {"ID": published6}
     labels = {"ID": "our 12-state" if args.identified == "ours" else "Eq. 5.3",
