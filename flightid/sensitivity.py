@@ -52,25 +52,20 @@ def _penalty_gradient(penalty, x):
     the penalty is inactive."""
     if penalty(x) == 0.0:
         return np.zeros(x.size)
-    grad = np.empty(x.size)
-    for k in range(x.size):
-        h = 1e-6 * max(1.0, abs(x[k]))
-        e = np.zeros_like(x)
-        e[k] = h
-        grad[k] = (penalty(x + e) - penalty(x - e)) / (2 * h)
-    return grad
+    return _jacobian(lambda z: np.atleast_1d(penalty(z)), x)[0]
 
 
 def _jacobian(residual_fn, x):
-    """Central-difference Jacobian of the residual vector."""
-    r0 = residual_fn(x)
-    jac = np.empty((r0.size, x.size))
+    """Central-difference Jacobian of the residual vector (relative step 1e-6: the
+    residuals are smooth in the parameters and carry about 1e-15 relative round-off,
+    so the truncation and round-off errors balance near this step)."""
+    columns = []
     for k in range(x.size):
         h = 1e-6 * max(1.0, abs(x[k]))
         e = np.zeros_like(x)
         e[k] = h
-        jac[:, k] = (residual_fn(x + e) - residual_fn(x - e)) / (2 * h)
-    return jac
+        columns.append((np.asarray(residual_fn(x + e)) - np.asarray(residual_fn(x - e))) / (2 * h))
+    return np.stack(columns, axis=1) if columns else np.empty((np.size(residual_fn(x)), 0))
 
 
 def _cramer_rao_insensitivity(residual_fn, x, jac=None):

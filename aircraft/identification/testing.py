@@ -14,10 +14,21 @@ import scipy.signal as sig
 from flightid.sweeps import frequency_sweep
 
 __all__ = ["simulate_mltau", "mixing_matrix", "coaxial_sweep_set", "SWASHPLATE_CONTROLS",
-           "printed_6state_structure", "printed_6state_values"]
+           "printed_6state_structure", "printed_6state_values", "COAXIAL_6STATE_TRUTH"]
 
 #: The six coaxial swashplate controls, in load order.
 SWASHPLATE_CONTROLS = ["theta0_U", "theta1s_U", "theta1c_U", "theta0_L", "theta1s_L", "theta1c_L"]
+
+#: A coaxial 6-state truth in the parameter names of
+#: :class:`aircraft.identification.structures.Coaxial6State` (masses ``m``, inverse
+#: static gains ``l`` in the rotor's non-dimensional units, delays ``t`` in seconds):
+#: values of the size the wake identifies, with both cross-rotor blocks non-zero so that
+#: every parameter shapes the response.
+COAXIAL_6STATE_TRUTH = {
+    "m11": 0.85, "m14": -0.4, "m41": 0.6, "m44": 1.05, "m22": -0.25, "m25": -0.07, "m52": -0.33,
+    "m55": -0.27, "l11": 0.44, "l14": -0.18, "l41": -0.73, "l44": 0.67, "l22": -0.045, "l25": 0.011,
+    "l52": -0.036, "l55": -0.061, "t11": 0.03, "t14": 0.10, "t41": 0.02, "t44": 0.026, "t22": 0.023,
+    "t25": 0.13, "t52": 0.08, "t55": 0.01}
 
 
 def simulate_mltau(M, Lbar, tau, omega, t, u):

@@ -18,15 +18,13 @@ import numpy as np
 import pytest
 
 from aircraft.identification.structures import Coaxial6State, Coaxial12State
+from aircraft.identification.testing import COAXIAL_6STATE_TRUTH
 from aircraft.identification.starts import equation_error_masses, equation_error_start
 from flightid import MeasuredResponse, fit
 
 OMEGA = 23.7          # rotor speed [rad/s]
 W = np.geomspace(0.7, 30.0, 40)
-TRUTH = {"m11": 0.85, "m14": -0.4, "m41": 0.6, "m44": 1.05, "m22": -0.25, "m25": -0.07, "m52": -0.33,
-         "m55": -0.27, "l11": 0.44, "l14": -0.18, "l41": -0.73, "l44": 0.67, "l22": -0.045, "l25": 0.011,
-         "l52": -0.036, "l55": -0.061, "t11": 0.03, "t14": 0.10, "t41": 0.02, "t44": 0.026, "t22": 0.023,
-         "t25": 0.13, "t52": 0.08, "t55": 0.01}
+TRUTH = COAXIAL_6STATE_TRUTH
 
 
 def _exact_data():
