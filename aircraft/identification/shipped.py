@@ -218,6 +218,11 @@ def stale_models(root=None):
         ``{name: [reason, ...]}`` for each stale shipped file; a reason names the
         settings hash (the recipe changed), the modules whose code changed, or
         ``"no code digest"`` (a file written before digests were recorded).
+
+    Examples
+    --------
+    >>> stale_models()                    # doctest: +SKIP
+    {'uh60_hover_3state': ['code digest: changed flightid/fitting.py']}
     """
     out, cache = {}, {}
     for name in shipped_models():

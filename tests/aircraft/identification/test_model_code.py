@@ -115,7 +115,7 @@ def test_regenerate_records_the_code_digest_of_a_printed_model(tmp_path):
 
 
 def test_the_regenerate_command_prints_progress_and_wall_time(monkeypatch, capsys):
-    from studies import cli
+    import studies.cli as cli
     done = []
     monkeypatch.setattr(shipped, "regenerate", lambda name, **kw: done.append(name))
     args = types.SimpleNamespace(list=False, check=False, published=False, names=["a", "b"], jobs=1, cache=None)
