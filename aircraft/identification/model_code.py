@@ -36,6 +36,8 @@ IDENTIFICATION_ENTRY = ("aircraft.identification.shipped",)
 NO_CODE_DIGEST = "no code digest"
 # bookkeeping that cannot change a model's numbers (the manifests leave it out too)
 _NOT_MODEL_CODE = ("aircraft/provenance.py",)
+# changed modules named in a staleness reason, at most
+_SHOWN = 8
 
 
 def _root(root):
@@ -204,6 +206,8 @@ def staleness(record, want_hash, *, root=None, cache=None):
     if record.code_digest != digest:
         # a file written with its per-module digests names the modules; else only the total differs
         names = code_changes(record.code_digests, modules) if record.code_digests else []
+        if len(names) > _SHOWN:        # e.g. another Python version: every module differs
+            names = names[:_SHOWN] + [f"... ({len(names)} modules in all)"]
         reasons.append("code digest: " + (("changed " + ", ".join(names)) if names else
                                           f"file {record.code_digest[:16]}, code {digest[:16]}"))
     return reasons

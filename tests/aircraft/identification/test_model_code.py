@@ -124,3 +124,12 @@ def test_the_regenerate_command_prints_progress_and_wall_time(monkeypatch, capsy
     assert done == ["a", "b"]
     for line in ("[1/2] a: regenerating", "[2/2] b: regenerating", "[2/2] wrote ", "regenerated 2 model file(s) in"):
         assert line in out, out
+
+
+def test_a_reason_names_at_most_a_few_modules(here):
+    # a file written on another Python differs in every module: the reason stays one line
+    rec = _record(here)
+    rec.code_digests = {p: "0" * 64 for p in rec.code_digests}
+    rec.code_digest = "f" * 64
+    (reason,) = staleness(rec, rec.settings_hash)
+    assert reason.count(".py") == 8 and reason.endswith(f"({len(rec.code_digests)} modules in all)")
