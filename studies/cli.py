@@ -221,15 +221,21 @@ def _shipped_models(args):
     status = 0
     if args.check:
         stale = shipped.stale_models()
-        print("stale:" if stale else "all shipped models match their recipes",
-              *(f"{k} (file {a}, recipe {b})" for k, (a, b) in stale.items()))
+        print("stale:" if stale else "all shipped models match their recipes and the code",
+              *(f"{k}: {'; '.join(reasons)}" for k, reasons in stale.items()), sep="\n  ")
         status = 1 if stale else 0
     names = list(args.names) + (sorted(shipped.PUBLISHED_FILES) if args.published else [])
-    for name in names:
+    t_all = time.perf_counter()
+    for k, name in enumerate(names, 1):
+        print(f"[{k}/{len(names)}] {name}: regenerating ...", flush=True)
+        t0 = time.perf_counter()
         out = shipped.regenerate(name, n_jobs=args.jobs, cache_dir=args.cache)
         if hasattr(out, "summary"):
             print(out.summary())
-        print(f"wrote {shipped_model_path(name)}")
+        print(f"[{k}/{len(names)}] wrote {shipped_model_path(name)} in {time.perf_counter() - t0:.1f} s",
+              flush=True)
+    if names:
+        print(f"regenerated {len(names)} model file(s) in {time.perf_counter() - t_all:.1f} s")
     return status
 
 

@@ -18,6 +18,7 @@
     wake_sensitivity.py  the same sweeps on wakes of different settings: wake_setting_sensitivity
     starts.py            equation-error starts of the M/Lbar/tau structures
     shipped.py           recipes of the shipped model files (``rotorwake shipped-models``)
+    model_code.py        the code digest a model file records, and why a file is stale
     testing.py           synthetic-truth data generated with scipy, for tests
 
 The model files and frame conversions live in :mod:`aircraft.inflow` (``model_files``,

@@ -3,10 +3,13 @@
 Each shipped model has a *recipe* here (configuration, flight condition,
 structure, trim thrust, :class:`IdentificationSettings`). Regenerating runs
 :func:`aircraft.identification.identify_inflow` with it (wake runs cached in
-``.cache/wake``) and writes ``aircraft/data/models/NAME.json``. The settings hash
-in each file is compared with its recipe's by :func:`stale_models` (and by the
-tests), so a change of any input (wake code version, settings, pipeline) shows up
-as a stale file instead of a silently outdated model.
+``.cache/wake``) and writes ``aircraft/data/models/NAME.json``. Each file records
+the settings hash of its recipe and the code digest of the code that computed it
+(:mod:`aircraft.identification.model_code`: the import closure of this module,
+``flightid`` and the wake included). :func:`stale_models` (and the tests) compare
+both with the recipe and the code now, so a change of any input (settings, wake
+code, fitting code, pipeline) shows up as a stale file, with the reason, instead of
+a silently outdated model.
 
 From the command line::
 
@@ -21,6 +24,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from .model_code import combined_digest, identification_code, kernel_backend_used, staleness
 from .pipeline import IdentificationSettings, identification_hash, identify_inflow
 from aircraft.inflow.model_files import ModelRecord, load_record, shipped_model_path, shipped_models
 from aircraft.provenance import settings_hash
@@ -138,7 +142,12 @@ def published_record(key):
 
 
 def regenerate(name, *, n_jobs=2, cache_dir="default", progress=True, path=None):
-    """Rebuild one shipped model file.
+    """Rebuild one shipped model file, recording the code digest of the code that ran.
+
+    The digest (:func:`~aircraft.identification.model_code.identification_code`) is
+    taken before the identification starts, so it describes the code the run
+    imported; the Biot-Savart backend the wake runs used is recorded in the
+    provenance (``kernel_backend``).
 
     Parameters
     ----------
@@ -164,26 +173,58 @@ def regenerate(name, *, n_jobs=2, cache_dir="default", progress=True, path=None)
     KeyError
         If ``name`` has no recipe.
     """
+    if name not in RECIPES and name not in PUBLISHED_FILES:
+        raise KeyError(f"no recipe {name!r}; have {sorted(RECIPES) + sorted(PUBLISHED_FILES)}")
+    # every module (GPU kernel included) is digested now; the kernel's module is dropped
+    # below if the runs did not use it, as stale_models compares
+    _, modules = identification_code()
     if name in PUBLISHED_FILES:
         rec = published_record(PUBLISHED_FILES[name])
         rec.name = name
+        _record_code(rec, modules)
         rec.save(path or shipped_model_path(name))
         return rec
-    if name not in RECIPES:
-        raise KeyError(f"no recipe {name!r}; have {sorted(RECIPES) + sorted(PUBLISHED_FILES)}")
     r = RECIPES[name]
     config, condition, structure = r.arguments()
     # the file keeps the reduction log and, for a model the rest of the rule trusts, the
     # reproduction on a second data set: a reader judges it as the identification did
     model = identify_inflow(config, condition, structure, ct=r.ct, settings=r.settings, name=name,
                             n_jobs=n_jobs, cache_dir=cache_dir, progress=progress, reproduce="if_trusted")
-    model.save(path or shipped_model_path(name), description=r.description)
+    rec = model.to_record(r.description)
+    _record_code(rec, modules)
+    model.provenance["kernel_backend"] = rec.provenance["kernel_backend"]
+    rec.save(path or shipped_model_path(name))
     return model
 
 
-def stale_models():
-    """``{name: (file hash, recipe hash)}`` for shipped files that no longer match their recipe."""
-    out = {}
+def _record_code(rec, modules):
+    """Put the code digest of ``modules`` (less any backend module that did not run) into ``rec``."""
+    backend = kernel_backend_used()
+    rec.code_digest, rec.code_digests = combined_digest(modules, kernel_backend=backend)
+    rec.provenance = {**rec.provenance, "kernel_backend": backend}
+
+
+def stale_models(root=None):
+    """Shipped files that no longer match their recipe or the code, with the reasons.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path, optional
+        Project root whose code is compared (default: this one).
+
+    Returns
+    -------
+    dict
+        ``{name: [reason, ...]}`` for each stale shipped file; a reason names the
+        settings hash (the recipe changed), the modules whose code changed, or
+        ``"no code digest"`` (a file written before digests were recorded).
+
+    Examples
+    --------
+    >>> stale_models()                    # doctest: +SKIP
+    {'uh60_hover_3state': ['code digest: changed flightid/fitting.py']}
+    """
+    out, cache = {}, {}
     for name in shipped_models():
         rec = load_record(name)
         if name in RECIPES:
@@ -192,6 +233,7 @@ def stale_models():
             want = published_record(PUBLISHED_FILES[name]).settings_hash
         else:
             continue
-        if rec.settings_hash != want:
-            out[name] = (rec.settings_hash, want)
+        reasons = staleness(rec, want, root=root, cache=cache)
+        if reasons:
+            out[name] = reasons
     return out

@@ -76,6 +76,12 @@ class ModelRecord:
         The reproduction check's table (empty if not checked).
     settings : dict
     settings_hash : str
+    code_digest : str
+        SHA-256 of the code the model was computed with (see
+        :mod:`aircraft.identification.model_code`); empty in a file written before
+        digests were recorded. Not part of the settings hash.
+    code_digests : dict
+        ``{module path: code digest}`` behind ``code_digest`` (names what changed).
     provenance : dict
         ``code_version``, ``schema``, ``source``, ``created``, ``wall_s``, ...
     description : str
@@ -103,6 +109,8 @@ class ModelRecord:
     settings_hash: str = ""
     provenance: dict = field(default_factory=dict)
     description: str = ""
+    code_digest: str = ""
+    code_digests: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if self.form not in ("mltau", "fgc", "statespace"):
@@ -132,8 +140,9 @@ class ModelRecord:
             "J_ave": self.J_ave, "cost_table": self.cost_table, "parameters": self.parameters,
             "verification": self.verification, "settings": self.settings,
             "settings_hash": self.settings_hash, "provenance": self.provenance,
-            # optional tables, written only when there is one (older files have neither)
-            **{k: v for k, v in (("reduction_log", self.reduction_log), ("reproduction", self.reproduction))
+            # optional entries, written only when there is one (older files have none)
+            **{k: v for k, v in (("reduction_log", self.reduction_log), ("reproduction", self.reproduction),
+                                 ("code_digest", self.code_digest), ("code_digests", self.code_digests))
                if len(v)}})
 
     def save(self, path):
@@ -160,7 +169,8 @@ class ModelRecord:
                        reduction_log=_table(d.get("reduction_log")), reproduction=_table(d.get("reproduction")),
                        trim_outputs=dict(trim.get("outputs") or {}), settings=d.get("settings") or {},
                        settings_hash=d.get("settings_hash", ""), provenance=d.get("provenance") or {},
-                       description=d.get("description", ""))
+                       description=d.get("description", ""), code_digest=d.get("code_digest", ""),
+                       code_digests=dict(d.get("code_digests") or {}))
         except KeyError as err:
             raise ModelFileError(f"{source}: missing field {err}") from err
 

@@ -66,10 +66,12 @@ def test_every_published_file_is_shipped_and_matches_the_printed_data():
         assert rec.frame == "rotor"
 
 
+@pytest.mark.shipped_files
 def test_shipped_files_are_not_stale():
-    # fails when the code that would make a shipped model (settings, structure,
-    # pipeline version, wake code version, configuration) no longer matches the
-    # file: regenerate it with `rotorwake shipped-models NAME`
+    # fails when a shipped model's recipe (settings, structure, pipeline version,
+    # configuration) or the code it was computed with (its code digest: flightid,
+    # the pipeline, the wake, ...) no longer matches the file, and names the reason:
+    # regenerate it with `rotorwake shipped-models NAME`
     assert stale_models() == {}
 
 

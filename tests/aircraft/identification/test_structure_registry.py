@@ -70,6 +70,7 @@ def test_identification_and_off_rotor_settings_share_one_excitation():
         IdentificationSettings(coherence_min=1.0)
 
 
+@pytest.mark.shipped_files
 def test_shipped_models_command_checks_the_files():
     out = subprocess.run([sys.executable, "-m", "studies.cli", "shipped-models", "--check", "--list"], cwd=ROOT,
                          capture_output=True, text=True)
