@@ -139,3 +139,62 @@ def test_trust_includes_the_reproduction_when_there_is_one():
     # the model's own reproduction is used when none is passed
     first.reproduction = bad
     assert not trust_check(first).passes
+
+
+def test_the_refit_rule_judges_the_parameters_and_reports_the_structure_apart():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    # the reduction on the second data set dropped l, but the first structure refitted
+    # there moves m by 3 % and l by 4 % against 5 % bounds: the fit reproduces
+    again = _fitted({"m": 1.4, "l": 0.0}, status={"l": "fixed"})
+    check = reproduction_check(first, again, refit=_fitted({"m": 1.03, "l": -2.08}, J_ave=41.0))
+    assert check.rule == "refit" and check.passes and check.failures == []
+    assert check.same_structure is False and check.parameters_reproduce is True
+    assert check.structure_failures == ["l is not free in the second fit"]
+    # the verdict's table is the refit's (0.6 and 0.8 bounds, by hand: 3/5, 4/5) ...
+    assert check.table.shift_in_bounds.round(6).tolist() == [0.6, 0.8]
+    assert (check.J_ave, check.J_ave_again, check.J_ave_refit) == (40.0, 40.0, 41.0)
+    # ... the identification's is kept beside it, and the former rule still fails on it
+    assert check.identification.reproduced.tolist() == [False, False]
+    old = reproduction_check(first, again, refit=_fitted({"m": 1.03, "l": -2.08}), rule="identification")
+    assert not old.passes and old.parameters_reproduce is True
+    assert old.failures == ["m moved 40 % (its bound 5 %)", "l is not free in the second fit"]
+    assert trust_check(first, reproduction=check).passes
+    assert trust_check(first, reproduction=check).limits["reproduction_structure"] == "different"
+    assert not trust_check(first, reproduction=old).passes
+    assert "same structure False" in check.summary()
+
+
+def test_the_refit_rule_fails_on_a_refit_outside_the_bounds_or_one_that_failed():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    same = _fitted({"m": 1.0, "l": -2.0})
+    # the reduction keeps the structure, the refit moves l 7.5 % against its 5 % bound
+    check = reproduction_check(first, same, refit=_fitted({"m": 1.0, "l": -2.15}))
+    assert check.same_structure is True and not check.passes and check.parameters_reproduce is False
+    assert check.failures == ["l moved 7.5 % (its bound 5 %)"]
+    g = trust_check(first, reproduction=check)
+    assert any("(the first structure refitted)" in f and "l moved 7.5 %" in f for f in g.failures)
+    assert g.limits["reproduction_structure"] == "same"
+    # a refit that could not run (unstable, no coherent point) is a failure, with its reason
+    failed = reproduction_check(first, same, refit_error="UnstableModelError: poles [0.1]")
+    assert failed.rule == "refit" and not failed.passes and failed.parameters_reproduce is False
+    assert failed.failures == ["the refit on the second data set failed: UnstableModelError: poles [0.1]"]
+    assert failed.table.reproduced.tolist() == [False, False] and "failed" in failed.summary()
+    # the refit alone (no second identification): the structure is not checked
+    alone = reproduction_check(first, refit=_fitted({"m": 1.01, "l": -2.0}))
+    assert alone.passes and alone.same_structure is None and alone.structure_failures == []
+    assert trust_check(first, reproduction=alone).limits["reproduction_structure"] == "not checked"
+
+
+def test_reproduction_check_refuses_what_it_cannot_judge():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0})
+    with pytest.raises(ValueError, match="again"):
+        reproduction_check(first)
+    with pytest.raises(ValueError, match="rule"):
+        reproduction_check(first, first, rule="both")
+    with pytest.raises(ValueError, match="'refit' rule needs"):
+        reproduction_check(first, first, rule="refit")
+    with pytest.raises(ValueError, match="'identification' rule needs"):
+        reproduction_check(first, refit=first, rule="identification")
