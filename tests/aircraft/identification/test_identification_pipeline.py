@@ -44,6 +44,31 @@ def test_reproduction_on_a_second_wake_data_set(model):
     assert model.provenance["reproduction"]["passes"] == rep.passes
     with pytest.raises(PipelineError, match="reproduce"):
         identify_inflow(uh60_single_rotor(), ct=CT, settings=TINY, reproduce="yes")
+    with pytest.raises(PipelineError, match="reproduction_rule"):
+        identify_inflow(uh60_single_rotor(), ct=CT, settings=TINY, reproduce=True, reproduction_rule="both")
+
+
+def test_reproduction_refits_the_first_structure_from_its_start(model):
+    from aircraft.identification.trust import refit_structure
+    rep = model.reproduction
+    free = model.parameters.query("status == 'free'").parameter.tolist()
+    # the verdict is the refit's: the first model's free parameters, nothing else
+    assert rep.rule == "refit" and rep.refit.parameter.tolist() == free and rep.table is rep.refit
+    assert rep.identification is not None and rep.same_structure in (True, False)
+    assert rep.passes == bool(rep.refit.reproduced.all()) == rep.parameters_reproduce
+    assert model.provenance["reproduction"]["same_structure"] == rep.same_structure
+    assert model.provenance["reproduction"]["parameters_reproduce"] == rep.parameters_reproduce
+    # the refit's start is the identification's own (every parameter, before the fit)
+    assert set(model.fit_start) == set(model.fit.structure.names)
+    # refitted on the first data set it finds the first optimum again (this 3-state has
+    # one optimum: the optimizer's tolerance, far inside the bounds), and on the second
+    # it is a different fit of the same responses
+    same = refit_structure(model, model.responses)
+    shift = [abs(same.structure.values[n] / model.values[n] - 1) * 100 for n in free]
+    bounds = model.parameters.set_index("parameter").cramer_rao_pct[free]
+    assert max(s / b for s, b in zip(shift, bounds)) < 0.01
+    assert [(p.output, p.input) for p in same.pairs] == [(p.output, p.input) for p in model.fit.pairs]
+    assert rep.J_ave_refit != model.J_ave and rep.J_ave_refit == pytest.approx(rep.J_ave_again, rel=0.2)
 
 
 def test_pipeline_identifies_a_pitt_peters_like_model(model):
