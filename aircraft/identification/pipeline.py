@@ -326,7 +326,8 @@ class IdentifiedModel:
                  f"max CR {free.cramer_rao_pct.max():.3g} %, max insensitivity "
                  f"{free.insensitivity_pct.max():.3g} % -> {'trusted' if self.trusted else 'NOT trusted'}",
                  *[f"  not trusted: {r}" for r in self.trust_failures()],
-                 f"reproduction on a second wake data set: {self.trust.limits['reproduction']}",
+                 f"reproduction on a second wake data set: {self.trust.limits['reproduction']} (structure "
+                 f"of the identification again: {self.trust.limits['reproduction_structure']})",
                  self.cost_table.to_string(index=False, float_format=fmt),
                  p.to_string(index=False, float_format=fmt),
                  self.verification_table.to_string(index=False, float_format=fmt)]

@@ -217,8 +217,14 @@ class ReproductionCheck:
         return "\n".join(lines)
 
     def to_pandas(self) -> pd.DataFrame:
-        """The per-parameter table the verdict is judged on (a copy)."""
-        return self.table.copy()
+        """Both parts, one row per parameter and part: the table the verdict is judged on
+        first, with a ``part`` column (``"refit"`` or ``"identification"``) and ``judged``
+        (True on the verdict's rows)."""
+        parts = [("refit", self.refit), ("identification", self.identification)]
+        if self.rule != "refit":
+            parts.reverse()
+        out = [t.assign(part=name, judged=name == self.rule) for name, t in parts if t is not None]
+        return pd.concat(out, ignore_index=True) if out else self.table.assign(part=self.rule, judged=True)
 
 
 def _failures(table):
@@ -278,15 +284,22 @@ def reproduction_check(model, again=None, *, refit=None, rule=None, refit_error=
     The trust rule's words are "the fit reproduces (parameters within their bounds)",
     and the ``"refit"`` rule (the default when a refit is given) holds a model to (ii)
     only. The refit changes nothing but the data, so its shifts measure what the
-    Cramér-Rao bounds claim to bound: how far round-off in the data moves the optimum
-    of this structure. The identification again also re-runs the reduction, a chain of
-    threshold decisions (insensitivity and Cramér-Rao limits, cost rises, runaway
-    tests) in which a parameter near a limit flips on any data change; its different
-    kept set then compares the parameters of two different models, which says the
-    reduction path is fragile rather than that the fit is. (i) is reported beside the
-    verdict, not required by it. The ``"identification"`` rule (the default without a
-    refit) keeps the former verdict: the identification again must keep the same
-    parameters, each within its bound.
+    Cramér-Rao bounds claim to bound: how far a round-off change of the data moves the
+    optimum of this structure. The identification again measures much more than that.
+    It re-runs the start and the staged fit, whose path through large intermediate
+    structures can end far apart on data that differ little; it fits the unreduced
+    structure, whose flat directions let the optimizer stop anywhere along a valley of
+    nearly equal cost; and it re-runs the reduction, a chain of threshold decisions
+    (insensitivity and Cramér-Rao limits, cost rises, runaway tests) in which a
+    parameter near a limit flips on any data change. Its different kept set then
+    compares the parameters of two different models: it says the identification's path
+    is fragile, not that the final model's parameters are undetermined, and the trust
+    rule judges the final model. (i) is therefore reported beside the verdict (and in
+    :func:`trust_check`'s ``limits``), not required by it. The refit starts where the
+    first identification started its fit, not from the first answer, so a fit that
+    reaches the first optimum only from that optimum is not credited. The
+    ``"identification"`` rule (the default without a refit) keeps the former verdict:
+    the identification again must keep the same parameters, each within its bound.
 
     Parameters
     ----------

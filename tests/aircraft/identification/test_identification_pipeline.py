@@ -247,3 +247,30 @@ def test_quasi_steady_check_against_momentum_theory_and_the_dc_gain(model, tmp_p
         quasi_steady_check(model, cfg, **{**kw, "window": (0.2, 5.0)})
     with pytest.raises(ValueError, match="IdentifiedModel or an IdentifiedInflow"):
         quasi_steady_check("model", cfg, **kw)
+
+
+def test_reproduction_reports_a_refit_that_cannot_run():
+    """The pipeline's two-part check on stubs: a second data set without the first fit's
+    responses cannot be refitted, which fails the refit rule with the reason and leaves
+    the former rule to the identification again."""
+    from types import SimpleNamespace
+    import control
+    from flightid import FGCStructure, fit, frequency_response, frequency_sweep
+    from aircraft.identification.pipeline import _reproduction
+    t, u = frequency_sweep(1.0, 20.0, 30.0, 0.01, seed=0)
+    y = control.forced_response(control.tf([4.0], [1.0, 2.0]), t, u).outputs      # 4 / (s + 2)
+    data = frequency_response(t, u, y, w_min=1.0, w_max=20.0, output_names=["y"])
+    start = FGCStructure([["f"]], [["g"]], [[1.0]], inputs=["u"], outputs=["y"], initial={"f": -1.0, "g": 1.0})
+    first = fit(start, data)
+    model = SimpleNamespace(fit=first, J_ave=first.J_ave, settings=SimpleNamespace(n_omega=20, coherence_min=0.6),
+                            structure=SimpleNamespace(fit_options={}), fit_start=dict(start.values))
+    other = frequency_response(t, u, y, w_min=1.0, w_max=20.0, output_names=["z"])   # no y/u response
+    again = SimpleNamespace(fit=first, J_ave=first.J_ave, responses=other)
+    check = _reproduction(model, again, "refit")
+    assert not check.passes and check.refit is None and check.same_structure is True
+    assert check.failures[0].startswith("the refit on the second data set failed: IdentificationError")
+    former = _reproduction(model, again, "identification")
+    assert former.rule == "identification" and former.passes and former.refit is None
+    # the refit that does run (the same record, the same start: the same optimum, to rounding)
+    ok = _reproduction(model, SimpleNamespace(fit=first, J_ave=first.J_ave, responses=data), "refit")
+    assert ok.passes and ok.table is ok.refit and ok.refit.shift_in_bounds.max() < 1e-6

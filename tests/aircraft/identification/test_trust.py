@@ -237,3 +237,17 @@ def test_a_synthetic_identification_refitted_on_slightly_different_data_reproduc
     # 1e-3 noise against unit signals: the shifts measured ~1e-3..1e-2 bounds; 0.1 leaves
     # room for another noise draw and still fails a fit that jumps to another optimum
     assert (check.table.shift_in_bounds < 0.1).all()
+
+
+def test_the_table_of_both_parts_puts_the_judged_part_first():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    again = _fitted({"m": 1.0})
+    check = reproduction_check(first, again, refit=_fitted({"m": 1.0, "l": -2.0}))
+    t = check.to_pandas()
+    assert t.part.tolist() == ["refit"] * 2 + ["identification"] * 2
+    assert t.judged.tolist() == [True, True, False, False]
+    old = reproduction_check(first, again, refit=_fitted({"m": 1.0, "l": -2.0}), rule="identification")
+    assert old.to_pandas().part.tolist()[:2] == ["identification"] * 2
+    failed = reproduction_check(first, refit_error="no coherent point").to_pandas()
+    assert failed.part.tolist() == ["refit"] * 2 and not failed.reproduced.any()
