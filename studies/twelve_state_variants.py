@@ -16,8 +16,9 @@ held swashplate steps, flap-rate ramps, held tilts; cached records) are estimate
 each model is driven by those records' loads and flap rates.
 Writes ``results/twelve_state_variants/``: ``table.csv``, ``parameters.csv`` (every
 variant's parameters, CR and insensitivity), ``cost_tables.csv``, ``variants.png``,
-``reproduction.csv`` (the variants otherwise trusted, identified again on a second
-wake data set started 1e-7 R away: each parameter's shift against its bound),
+``reproduction.csv`` (the variants otherwise trusted, on a second wake data set started
+1e-7 R away: each parameter's shift against its bound, for the final structure refitted
+there, the part the verdict judges, and for the whole identification again: column ``part``),
 ``guideline.csv`` (each variant's parameters outside the bounds, kept or not by the
 guideline's keep rule, with the reason: :func:`aircraft.identification.trust.trust_check`);
 ``steady_gains.csv`` (the wake's G_C, G_R, G_T, long), ``steady_observations.csv`` (each

@@ -80,9 +80,7 @@ def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, out_dir="results/wake_i
               f"{model.trim.outputs['CT']:.5f}, lam0 {model.trim.outputs['lam0']:.5f} (momentum {lam_h:.5f})")
         print(model.summary())
         rep = model.reproduction
-        print(f"reproduction on a second wake (start displaced by 1e-7 R): J_ave {rep.J_ave:.2f} -> "
-              f"{rep.J_ave_again:.2f}, {'reproduced' if rep.passes else 'NOT reproduced'}; largest shift "
-              f"{rep.table.shift_in_bounds.max():.2f} x its bound")
+        print("on a second wake (start displaced by 1e-7 R): " + rep.summary())
         print(table.to_string(index=False, float_format=fmt))
         print(f"quasi-steady lam0/C_T gain 1/Lbar11 = {gain:.3f}; momentum 1/(4 lam_h) = "
               f"{1 / (4 * lam_h):.3f}; ratio {gain * 4 * lam_h:.2f} (dissertation's MFW: "

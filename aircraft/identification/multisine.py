@@ -185,7 +185,7 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
         raise PipelineError(f"the multisine record cannot separate the inputs: {err}") from err
     stages.update()
     omega = float(config.rotors[0].omega)
-    staged, reduction, result, check, floor, start_log = _fit_and_verify(
+    staged, reduction, result, check, floor, start_log, fit_start = _fit_and_verify(
         structure, responses, runs, doublet_spec, zero_spec, wake_trim, omega, s, progress, stages)
     dt = s.wake_settings.azimuth_step / omega
     excitation = ms_spec.multisine(dt)
@@ -202,4 +202,4 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     return IdentifiedModel(name=name or f"{structure.key} from one multisine record", structure=structure,
                            fit=result, reduction=reduction, responses=responses, verification=check,
                            noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
-                           provenance=provenance, hash_payload=payload, staged=staged)
+                           provenance=provenance, hash_payload=payload, staged=staged, fit_start=fit_start)

@@ -27,7 +27,7 @@ import pandas as pd
 from aircraft.inflow.model_files import SCHEMA, ModelRecord
 from aircraft.provenance import identity_dict, identity_repr, settings_hash
 from .excitation import ExcitationSettings
-from .trust import reproduction_check, trust_check
+from .trust import REPRODUCTION_RULES, refit_structure, reproduction_check, trust_check
 from .structures.base import InflowStructure
 from .structures import get_structure
 
@@ -203,8 +203,13 @@ class IdentifiedModel:
         The staged fit (§6.4.3) before the reduction, for structures with a
         :meth:`~InflowStructure.staged_plan` (its ``.log`` lists the stages).
     reproduction : aircraft.identification.trust.ReproductionCheck or None
-        The same identification on a second wake data set (``identify_inflow(...,
-        reproduce=True)``); part of the trust verdict when present.
+        The identification again and the final structure refitted on a second wake
+        data set (``identify_inflow(..., reproduce=True)``); part of the trust verdict
+        when present.
+    fit_start : dict or None
+        Parameter values the identification's fit started from (the reduction's first
+        fit: the data-driven start, or the staged optimum of a staged structure); the
+        reproduction's refit starts there.
     """
 
     name: str
@@ -222,6 +227,7 @@ class IdentifiedModel:
     hash_payload: dict = field(default_factory=dict)
     staged: object = None
     reproduction: object = None
+    fit_start: dict | None = None
 
     @property
     def cost_table(self) -> pd.DataFrame:
@@ -320,7 +326,8 @@ class IdentifiedModel:
                  f"max CR {free.cramer_rao_pct.max():.3g} %, max insensitivity "
                  f"{free.insensitivity_pct.max():.3g} % -> {'trusted' if self.trusted else 'NOT trusted'}",
                  *[f"  not trusted: {r}" for r in self.trust_failures()],
-                 f"reproduction on a second wake data set: {self.trust.limits['reproduction']}",
+                 f"reproduction on a second wake data set: {self.trust.limits['reproduction']} (structure "
+                 f"of the identification again: {self.trust.limits['reproduction_structure']})",
                  self.cost_table.to_string(index=False, float_format=fmt),
                  p.to_string(index=False, float_format=fmt),
                  self.verification_table.to_string(index=False, float_format=fmt)]
@@ -372,9 +379,10 @@ def _fit_and_verify(structure, responses, runs, doublet_spec, zero_spec, wake_tr
                     stages):
     """Start, (staged) fit, reduction and verification of ``structure`` on lambda/(C, beta_dot)
     ``responses``; shared by every excitation. Returns ``(staged, reduction, result,
-    doublet verification, noise-floor verification, start log)``; the start log is one
-    dict per data-driven start tried (:func:`_start_candidates`) with the J_ave its full
-    fit reached and whether it was kept."""
+    doublet verification, noise-floor verification, start log, fit start)``; the start log
+    is one dict per data-driven start tried (:func:`_start_candidates`) with the J_ave its
+    full fit reached and whether it was kept; the fit start the values the final fit (or
+    the reduction's first) started from."""
     from flightid import fit, fit_staged, reduce
     fit_kwargs = dict(frequency_ranges=tuple(s.fit_range), n_omega=s.n_omega, coherence_min=s.coherence_min,
                       **structure.fit_options)
@@ -412,6 +420,7 @@ def _fit_and_verify(structure, responses, runs, doublet_spec, zero_spec, wake_tr
             fit_kwargs["pairs"] = list(zip(best_fit.cost_table.output, best_fit.cost_table.input))
         else:
             flight_structure = best_fit.structure
+    fit_start = dict(flight_structure.values)
     if s.reduce:
         reduction = reduce(flight_structure, responses, insensitivity_max=s.insensitivity_max,
                            cramer_rao_max=s.cramer_rao_max, protected=structure.protected,
@@ -427,12 +436,24 @@ def _fit_and_verify(structure, responses, runs, doublet_spec, zero_spec, wake_tr
     floor = _verify(model_ss, runs[zero_spec.name], ref, structure.inputs, structure.outputs)
     stages.update()
     stages.close()
-    return staged, reduction, result, check, floor, start_log
+    return staged, reduction, result, check, floor, start_log, fit_start
+
+
+def _reproduction(model, again, rule):
+    """Both parts of the reproduction check: ``again`` (the identification on the second
+    data set) and the model's final structure refitted on ``again``'s responses."""
+    try:
+        refit, error = refit_structure(model, again.responses), ""
+    except (ValueError, RuntimeError) as err:     # flightid's errors subclass these
+        refit, error = None, f"{type(err).__name__}: {err}"[:200]
+    if rule == "identification":
+        return reproduction_check(model, again, refit=refit, rule=rule)
+    return reproduction_check(model, again, refit=refit, rule=rule, refit_error=error)
 
 
 def identify_inflow(config, condition=None, structure="single_rotor_3state", *, ct=None, trim=None,
                     settings=None, controls=None, name=None, n_jobs=2, cache_dir="default",
-                    progress=True, scheduler=None, reproduce=False):
+                    progress=True, scheduler=None, reproduce=False, reproduction_rule="refit"):
     """Identify an inflow model of ``config`` from the free-vortex wake.
 
     Parameters
@@ -468,10 +489,16 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     reproduce : bool or "if_trusted"
         Also identify on a second wake data set, marched from a start displaced by
         :data:`REPRODUCTION_PERTURBATION` of the radius (what another machine's
-        rounding would give), and attach the comparison as ``model.reproduction``
-        (:func:`~aircraft.identification.trust.reproduction_check`), which the trust
-        verdict then includes. Doubles the cost; ``"if_trusted"`` spends it only on a
-        model the rest of the rule trusts (for the others the verdict is already no).
+        rounding would give), refit the final structure on it from the first fit's
+        start (:func:`~aircraft.identification.trust.refit_structure`), and attach both comparisons as
+        ``model.reproduction`` (:func:`~aircraft.identification.trust.reproduction_check`),
+        which the trust verdict then includes. Doubles the cost; ``"if_trusted"`` spends
+        it only on a model the rest of the rule trusts (for the others the verdict is
+        already no).
+    reproduction_rule : {"refit", "identification"}
+        Which part the verdict requires: the refit's parameters within their bounds
+        (default), or the former rule, the identification again keeping the same
+        parameters within their bounds (both parts are reported either way).
 
     Returns
     -------
@@ -501,6 +528,8 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     t_start = time.perf_counter()
     if not (isinstance(reproduce, bool) or reproduce == "if_trusted"):
         raise PipelineError(f"reproduce must be True, False or 'if_trusted', got {reproduce!r}")
+    if reproduction_rule not in REPRODUCTION_RULES:
+        raise PipelineError(f"reproduction_rule must be one of {REPRODUCTION_RULES}, got {reproduction_rule!r}")
     settings = settings or IdentificationSettings()
     condition = condition or FlightCondition()
     structure = get_structure(structure)
@@ -546,7 +575,7 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     stages.update()
     stages.set_postfix_str("fit + reduce")
     omega = float(config.rotors[0].omega)
-    staged, reduction, result, check, floor, start_log = _fit_and_verify(
+    staged, reduction, result, check, floor, start_log, fit_start = _fit_and_verify(
         structure, responses, runs, doublet_spec, zero_spec, wake_trim, omega, s, progress, stages)
     provenance = {"source": "aircraft.identification.identify_inflow", "schema": SCHEMA, "starts": start_log,
                   "pipeline": PIPELINE_VERSION, "code_version": _code_version(),
@@ -556,15 +585,17 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     model = IdentifiedModel(name=name or f"{structure.key} from the free wake", structure=structure,
                             fit=result, reduction=reduction, responses=responses, verification=check,
                             noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
-                            provenance=provenance, hash_payload=payload, staged=staged)
+                            provenance=provenance, hash_payload=payload, staged=staged, fit_start=fit_start)
     if reproduce is True or (reproduce == "if_trusted" and model.trusted):
         from dataclasses import replace
         second = replace(s, wake=replace(s.wake_settings, initial_perturbation=REPRODUCTION_PERTURBATION))
         again = identify_inflow(config, condition, structure, trim=trim_req, settings=second, controls=controls,
                                 name=f"{model.name} (second data set)", n_jobs=n_jobs, cache_dir=cache_dir,
                                 progress=progress, scheduler=scheduler)
-        model.reproduction = reproduction_check(model, again)
+        model.reproduction = _reproduction(model, again, reproduction_rule)
         model.provenance["reproduction"] = {"initial_perturbation": REPRODUCTION_PERTURBATION,
-                                            "J_ave_again": again.J_ave,
+                                            "J_ave_again": again.J_ave, "J_ave_refit": model.reproduction.J_ave_refit,
+                                            "rule": reproduction_rule, "same_structure": model.reproduction.same_structure,
+                                            "parameters_reproduce": model.reproduction.parameters_reproduce,
                                             "passes": model.reproduction.passes}
     return model

@@ -44,6 +44,31 @@ def test_reproduction_on_a_second_wake_data_set(model):
     assert model.provenance["reproduction"]["passes"] == rep.passes
     with pytest.raises(PipelineError, match="reproduce"):
         identify_inflow(uh60_single_rotor(), ct=CT, settings=TINY, reproduce="yes")
+    with pytest.raises(PipelineError, match="reproduction_rule"):
+        identify_inflow(uh60_single_rotor(), ct=CT, settings=TINY, reproduce=True, reproduction_rule="both")
+
+
+def test_reproduction_refits_the_first_structure_from_its_start(model):
+    from aircraft.identification.trust import refit_structure
+    rep = model.reproduction
+    free = model.parameters.query("status == 'free'").parameter.tolist()
+    # the verdict is the refit's: the first model's free parameters, nothing else
+    assert rep.rule == "refit" and rep.refit.parameter.tolist() == free and rep.table is rep.refit
+    assert rep.identification is not None and rep.same_structure in (True, False)
+    assert rep.passes == bool(rep.refit.reproduced.all()) == rep.parameters_reproduce
+    assert model.provenance["reproduction"]["same_structure"] == rep.same_structure
+    assert model.provenance["reproduction"]["parameters_reproduce"] == rep.parameters_reproduce
+    # the refit's start is the identification's own (every parameter, before the fit)
+    assert set(model.fit_start) == set(model.fit.structure.names)
+    # refitted on the first data set it finds the first optimum again (this 3-state has
+    # one optimum: the optimizer's tolerance, far inside the bounds), and on the second
+    # it is a different fit of the same responses
+    same = refit_structure(model, model.responses)
+    shift = [abs(same.structure.values[n] / model.values[n] - 1) * 100 for n in free]
+    bounds = model.parameters.set_index("parameter").cramer_rao_pct[free]
+    assert max(s / b for s, b in zip(shift, bounds)) < 0.01
+    assert [(p.output, p.input) for p in same.pairs] == [(p.output, p.input) for p in model.fit.pairs]
+    assert rep.J_ave_refit != model.J_ave and rep.J_ave_refit == pytest.approx(rep.J_ave_again, rel=0.2)
 
 
 def test_pipeline_identifies_a_pitt_peters_like_model(model):
@@ -222,3 +247,30 @@ def test_quasi_steady_check_against_momentum_theory_and_the_dc_gain(model, tmp_p
         quasi_steady_check(model, cfg, **{**kw, "window": (0.2, 5.0)})
     with pytest.raises(ValueError, match="IdentifiedModel or an IdentifiedInflow"):
         quasi_steady_check("model", cfg, **kw)
+
+
+def test_reproduction_reports_a_refit_that_cannot_run():
+    """The pipeline's two-part check on stubs: a second data set without the first fit's
+    responses cannot be refitted, which fails the refit rule with the reason and leaves
+    the former rule to the identification again."""
+    from types import SimpleNamespace
+    import control
+    from flightid import FGCStructure, fit, frequency_response, frequency_sweep
+    from aircraft.identification.pipeline import _reproduction
+    t, u = frequency_sweep(1.0, 20.0, 30.0, 0.01, seed=0)
+    y = control.forced_response(control.tf([4.0], [1.0, 2.0]), t, u).outputs      # 4 / (s + 2)
+    data = frequency_response(t, u, y, w_min=1.0, w_max=20.0, output_names=["y"])
+    start = FGCStructure([["f"]], [["g"]], [[1.0]], inputs=["u"], outputs=["y"], initial={"f": -1.0, "g": 1.0})
+    first = fit(start, data)
+    model = SimpleNamespace(fit=first, J_ave=first.J_ave, settings=SimpleNamespace(n_omega=20, coherence_min=0.6),
+                            structure=SimpleNamespace(fit_options={}), fit_start=dict(start.values))
+    other = frequency_response(t, u, y, w_min=1.0, w_max=20.0, output_names=["z"])   # no y/u response
+    again = SimpleNamespace(fit=first, J_ave=first.J_ave, responses=other)
+    check = _reproduction(model, again, "refit")
+    assert not check.passes and check.refit is None and check.same_structure is True
+    assert check.failures[0].startswith("the refit on the second data set failed: IdentificationError")
+    former = _reproduction(model, again, "identification")
+    assert former.rule == "identification" and former.passes and former.refit is None
+    # the refit that does run (the same record, the same start: the same optimum, to rounding)
+    ok = _reproduction(model, SimpleNamespace(fit=first, J_ave=first.J_ave, responses=data), "refit")
+    assert ok.passes and ok.table is ok.refit and ok.refit.shift_in_bounds.max() < 1e-6

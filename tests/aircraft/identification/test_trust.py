@@ -139,3 +139,115 @@ def test_trust_includes_the_reproduction_when_there_is_one():
     # the model's own reproduction is used when none is passed
     first.reproduction = bad
     assert not trust_check(first).passes
+
+
+def test_the_refit_rule_judges_the_parameters_and_reports_the_structure_apart():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    # the reduction on the second data set dropped l, but the first structure refitted
+    # there moves m by 3 % and l by 4 % against 5 % bounds: the fit reproduces
+    again = _fitted({"m": 1.4, "l": 0.0}, status={"l": "fixed"})
+    check = reproduction_check(first, again, refit=_fitted({"m": 1.03, "l": -2.08}, J_ave=41.0))
+    assert check.rule == "refit" and check.passes and check.failures == []
+    assert check.same_structure is False and check.parameters_reproduce is True
+    assert check.structure_failures == ["l is not free in the second fit"]
+    # the verdict's table is the refit's (0.6 and 0.8 bounds, by hand: 3/5, 4/5) ...
+    assert check.table.shift_in_bounds.round(6).tolist() == [0.6, 0.8]
+    assert (check.J_ave, check.J_ave_again, check.J_ave_refit) == (40.0, 40.0, 41.0)
+    # ... the identification's is kept beside it, and the former rule still fails on it
+    assert check.identification.reproduced.tolist() == [False, False]
+    old = reproduction_check(first, again, refit=_fitted({"m": 1.03, "l": -2.08}), rule="identification")
+    assert not old.passes and old.parameters_reproduce is True
+    assert old.failures == ["m moved 40 % (its bound 5 %)", "l is not free in the second fit"]
+    assert trust_check(first, reproduction=check).passes
+    assert trust_check(first, reproduction=check).limits["reproduction_structure"] == "different"
+    assert not trust_check(first, reproduction=old).passes
+    assert "same structure False" in check.summary()
+
+
+def test_the_refit_rule_fails_on_a_refit_outside_the_bounds_or_one_that_failed():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    same = _fitted({"m": 1.0, "l": -2.0})
+    # the reduction keeps the structure, the refit moves l 7.5 % against its 5 % bound
+    check = reproduction_check(first, same, refit=_fitted({"m": 1.0, "l": -2.15}))
+    assert check.same_structure is True and not check.passes and check.parameters_reproduce is False
+    assert check.failures == ["l moved 7.5 % (its bound 5 %)"]
+    g = trust_check(first, reproduction=check)
+    assert any("(the first structure refitted)" in f and "l moved 7.5 %" in f for f in g.failures)
+    assert g.limits["reproduction_structure"] == "same"
+    # a refit that could not run (unstable, no coherent point) is a failure, with its reason
+    failed = reproduction_check(first, same, refit_error="UnstableModelError: poles [0.1]")
+    assert failed.rule == "refit" and not failed.passes and failed.parameters_reproduce is False
+    assert failed.failures == ["the refit on the second data set failed: UnstableModelError: poles [0.1]"]
+    assert failed.table.reproduced.tolist() == [False, False] and "failed" in failed.summary()
+    # the refit alone (no second identification): the structure is not checked
+    alone = reproduction_check(first, refit=_fitted({"m": 1.01, "l": -2.0}))
+    assert alone.passes and alone.same_structure is None and alone.structure_failures == []
+    assert trust_check(first, reproduction=alone).limits["reproduction_structure"] == "not checked"
+
+
+def test_reproduction_check_refuses_what_it_cannot_judge():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0})
+    with pytest.raises(ValueError, match="again"):
+        reproduction_check(first)
+    with pytest.raises(ValueError, match="rule"):
+        reproduction_check(first, first, rule="both")
+    with pytest.raises(ValueError, match="'refit' rule needs"):
+        reproduction_check(first, first, rule="refit")
+    with pytest.raises(ValueError, match="'identification' rule needs"):
+        reproduction_check(first, refit=first, rule="identification")
+
+
+def test_a_synthetic_identification_refitted_on_slightly_different_data_reproduces():
+    """A known 2-state truth fitted by flightid, its structure refitted on a second record
+    whose measurement noise differs: the refit must stay well inside the bounds."""
+    import control
+    import numpy as np
+    from flightid import FGCStructure, fit, frequency_response, frequency_sweep
+    from aircraft.identification.trust import refit_structure, reproduction_check
+    t, u = frequency_sweep(1.0, 20.0, 40.0, 0.01, seed=0)
+    truth = control.ss([[-2.0, 0.0], [0.0, -5.0]], [[4.0], [3.0]], np.eye(2), np.zeros((2, 1)))
+    y = control.forced_response(truth, t, u).outputs.T
+    rng = np.random.default_rng(1)
+    # two records of the same truth, differing only in 1e-3 noise (~0.1 % of the signals)
+    records = [frequency_response(t, u, y + 1e-3 * rng.standard_normal(y.shape), w_min=1.0, w_max=20.0,
+                                  output_names=["y1", "y2"]) for _ in range(2)]
+    start = FGCStructure([["f1", "f12"], ["f21", "f2"]], [["g1"], ["g2"]], np.eye(2), inputs=["u"],
+                         outputs=["y1", "y2"], initial={"f1": -1.0, "f12": 0.0, "f21": 0.0, "f2": -3.0, "g1": 1.0,
+                                                        "g2": 1.0}, fixed=["f12", "f21"])
+    first = fit(start, records[0])
+    model = SimpleNamespace(fit=first, J_ave=first.J_ave, settings=SimpleNamespace(n_omega=20, coherence_min=0.6),
+                            structure=SimpleNamespace(fit_options={}), fit_start=dict(start.values))
+    # the fit finds the truth (within 2 % = well inside its bounds of ~5-8 %) ...
+    v = first.structure.values
+    assert np.allclose([v["f1"], v["f2"], v["g1"], v["g2"]], [-2.0, -5.0, 4.0, 3.0], rtol=0.02)
+    # ... the refit on the same record from the same start is the same optimum (to the
+    # optimizer's rounding), the fixed couplings stay fixed at their values
+    same = refit_structure(model, records[0])
+    assert np.allclose([same.structure.values[n] for n in start.names], [v[n] for n in start.names],
+                       rtol=1e-9, atol=0)
+    assert same.structure.fixed == {"f12", "f21"}
+    # ... and on the second record it moves, but by a small fraction of the bounds
+    again = refit_structure(model, records[1])
+    check = reproduction_check(model, refit=again)
+    assert check.passes and check.parameters_reproduce and check.same_structure is None
+    assert (check.table.shift_pct > 0).all()
+    # 1e-3 noise against unit signals: the shifts measured ~1e-3..1e-2 bounds; 0.1 leaves
+    # room for another noise draw and still fails a fit that jumps to another optimum
+    assert (check.table.shift_in_bounds < 0.1).all()
+
+
+def test_the_table_of_both_parts_puts_the_judged_part_first():
+    from aircraft.identification.trust import reproduction_check
+    first = _fitted({"m": 1.0, "l": -2.0})
+    again = _fitted({"m": 1.0})
+    check = reproduction_check(first, again, refit=_fitted({"m": 1.0, "l": -2.0}))
+    t = check.to_pandas()
+    assert t.part.tolist() == ["refit"] * 2 + ["identification"] * 2
+    assert t.judged.tolist() == [True, True, False, False]
+    old = reproduction_check(first, again, refit=_fitted({"m": 1.0, "l": -2.0}), rule="identification")
+    assert old.to_pandas().part.tolist()[:2] == ["identification"] * 2
+    failed = reproduction_check(first, refit_error="no coherent point").to_pandas()
+    assert failed.part.tolist() == ["refit"] * 2 and not failed.reproduced.any()
