@@ -173,7 +173,7 @@ class ModesOverSpeed:
 
     table: pd.DataFrame
 
-    def plot(self, title=None, max_frequency=15.0):
+    def plot(self, title=None, max_frequency=10.0):
         """Figure: root loci against speed; frequency and damping against speed.
 
         Parameters
@@ -181,8 +181,8 @@ class ModesOverSpeed:
         title : str, optional
             Figure title.
         max_frequency : float
-            Tracks whose frequency stays above this [rad/s] (flap and inflow modes)
-            are left out.
+            Eigenvalues of larger magnitude [rad/s] (flap and inflow modes) are
+            left out.
 
         Returns
         -------
@@ -190,8 +190,7 @@ class ModesOverSpeed:
         """
         from matplotlib.figure import Figure
         t = self.table
-        keep = t.groupby("track")["frequency"].transform("min") <= max_frequency
-        t = t[keep & (t["mode"] != "heading")]
+        t = t[(t["frequency"] <= max_frequency) & (t["mode"] != "heading")]
         names = list(dict.fromkeys(t.sort_values("frequency")["track_mode"]))
         colors = {n: f"C{i % 10}" for i, n in enumerate(names)}
         fig = Figure(figsize=(13, 4.2), layout="constrained")
