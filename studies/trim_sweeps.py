@@ -20,12 +20,31 @@ short period, dutch roll (the hover lateral pendulum at low speed), spiral,
 roll-flap and the subsidences, each on one track so that a mode that changes
 character with speed stays one line in the root-locus figure.
 
+The coaxial's propeller at 200 kt: the default propeller is the uniform-inflow,
+small-angle blade-element rotor with the pitch at three-quarter radius; the
+blade-element propeller (``HelicopterSettings(propeller_model="blade_element")``)
+uses its twist and the exact inflow angles (about 28 deg at three-quarter
+radius at 200 kt). ``propeller_200kt.csv`` trims the aircraft at 200 kt with
+both, beside the dissertation's rotor thrusts (C_T 0.0073 upper, 0.0065
+lower): at the prescribed 2 deg rotor angle of attack the rotors' thrust is
+set by the weight and the drag, not by the propeller model, which changes the
+propeller's trimmed pitch and power only
+(:func:`studies.analysis.propeller_200kt.propeller_models_at_200kt`).
+
+The UH-60-like aircraft is the dissertation's (Appendix B.1: 17,150 lb, C_T
+0.0061, uniform blades of 1.73 ft chord, -17 deg linear twist, our own
+fuselage, tail and inertia assumptions), not a UH-60A (whose blades carry
+SC1095/SC1094R8 sections, a swept tip, -18 deg non-linear twist, a canted
+tail rotor and a scheduled stabilator); no published UH-60A level-flight trim
+numbers (controls, attitudes, power against speed) could be read from the
+sources reachable here, so the sweep is not compared with flight test.
+
 Writes ``results/trim_sweeps/``: per case ``trims_<case>.csv`` (controls [deg],
 attitudes [deg], power [kW], residual), ``eigenvalues_<case>.csv`` (poles with
 their dominant states), ``modes_<case>.csv`` (speed, track, mode name,
 eigenvalue, frequency [rad/s], damping, dominant states), ``trims_<case>.png``,
 ``eigenvalues_<case>.png`` and ``modes_<case>.png`` (root loci, frequency and
-damping against speed).
+damping against speed), ``propeller_200kt.csv``.
 
 Run: ``python -m studies.trim_sweeps``
 """
@@ -41,6 +60,7 @@ from aircraft.helicopter import Helicopter
 from aircraft.helicopter.mode_tracking import modes_over_speed
 from aircraft.helicopter.sweep import trim_sweep
 from aircraft.inflow import DynamicClimb, IsolatedRotors, PittPeters
+from studies.analysis.propeller_200kt import DISSERTATION_CT_200KT, propeller_models_at_200kt
 
 __all__ = ["CASES", "main"]
 
@@ -82,6 +102,12 @@ def main(out_dir="results/trim_sweeps"):
         failed = t[~t["converged"]]["speed"].tolist()
         if failed:
             print(f"  no trim at {failed} m/s")
+    prop = propeller_models_at_200kt()
+    prop.to_csv(out / "propeller_200kt.csv", index=False)
+    print("[coaxial at 200 kt] rotor thrust and propeller with each propeller model")
+    print(prop.drop(columns=["CT_U_dissertation", "CT_L_dissertation"]).to_string(
+        index=False, float_format=lambda v: f"{v:.5g}"))
+    print(f"  dissertation: CT_U {DISSERTATION_CT_200KT[0]}, CT_L {DISSERTATION_CT_200KT[1]}")
     return out
 
 
