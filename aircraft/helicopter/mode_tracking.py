@@ -286,6 +286,7 @@ def modes_over_speed(systems, omega=None, max_cost=1.0) -> ModesOverSpeed:
         tables.append(cur)
         prev = cur
     table = pd.concat(tables, ignore_index=True)
-    common = table.groupby("track")["mode"].agg(lambda s: s.value_counts().index[0])
+    # the name a track has at most speeds; a tie goes to the name met first (lowest speed)
+    common = table.groupby("track")["mode"].agg(lambda s: max(dict.fromkeys(s), key=list(s).count))
     table.insert(3, "track_mode", table["track"].map(common))
     return ModesOverSpeed(table.sort_values(["track", "speed"]).reset_index(drop=True))
