@@ -161,7 +161,7 @@ STUDIES = {s.command: s for s in (
           default_out="results/pitt_peters_hover_check"),
     Study("trim-sweeps", "studies.trim_sweeps",
           "both aircraft trimmed and linearised from hover to maximum speed: controls, attitudes, "
-          "power and eigenvalues against speed", 1.0, default_out="results/trim_sweeps"),
+          "power and eigenvalues against speed, modes named and tracked; the 200 kt propeller models", 1.0, default_out="results/trim_sweeps"),
 )}
 # identification_demo is written by `main` as its stage 1; `results` does not rerun it
 

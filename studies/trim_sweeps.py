@@ -14,9 +14,37 @@ Both aircraft are trimmed in level flight at each speed and linearised there
 A speed whose trim does not converge is a row with ``converged = False`` and the
 solver's message, so the tables show where a model has no trim.
 
+The modes are named by their participation factors and followed from speed to
+speed (:func:`aircraft.helicopter.mode_tracking.modes_over_speed`): phugoid,
+short period, dutch roll (the hover lateral pendulum at low speed), spiral,
+roll-flap and the subsidences, each on one track so that a mode that changes
+character with speed stays one line in the root-locus figure.
+
+The coaxial's propeller at 200 kt: the default propeller is the uniform-inflow,
+small-angle blade-element rotor with the pitch at three-quarter radius; the
+blade-element propeller (``HelicopterSettings(propeller_model="blade_element")``)
+uses its twist and the exact inflow angles (about 28 deg at three-quarter
+radius at 200 kt). ``propeller_200kt.csv`` trims the aircraft at 200 kt with
+both, beside the dissertation's rotor thrusts (C_T 0.0073 upper, 0.0065
+lower): at the prescribed 2 deg rotor angle of attack the rotors' thrust is
+set by the weight and the drag, not by the propeller model, which changes the
+propeller's trimmed pitch and power only
+(:func:`studies.analysis.propeller_200kt.propeller_models_at_200kt`).
+
+The UH-60-like aircraft is the dissertation's (Appendix B.1: 17,150 lb, C_T
+0.0061, uniform blades of 1.73 ft chord, -17 deg linear twist, our own
+fuselage, tail and inertia assumptions), not a UH-60A (whose blades carry
+SC1095/SC1094R8 sections, a swept tip, -18 deg non-linear twist, a canted
+tail rotor and a scheduled stabilator); no published UH-60A level-flight trim
+numbers (controls, attitudes, power against speed) could be read from the
+sources reachable here, so the sweep is not compared with flight test.
+
 Writes ``results/trim_sweeps/``: per case ``trims_<case>.csv`` (controls [deg],
 attitudes [deg], power [kW], residual), ``eigenvalues_<case>.csv`` (poles with
-their dominant states), ``trims_<case>.png`` and ``eigenvalues_<case>.png``.
+their dominant states), ``modes_<case>.csv`` (speed, track, mode name,
+eigenvalue, frequency [rad/s], damping, dominant states), ``trims_<case>.png``,
+``eigenvalues_<case>.png`` and ``modes_<case>.png`` (root loci, frequency and
+damping against speed), ``propeller_200kt.csv``.
 
 Run: ``python -m studies.trim_sweeps``
 """
@@ -29,8 +57,10 @@ import pandas as pd
 
 from aircraft import coaxial_compound, uh60_single_rotor
 from aircraft.helicopter import Helicopter
+from aircraft.helicopter.mode_tracking import modes_over_speed
 from aircraft.helicopter.sweep import trim_sweep
 from aircraft.inflow import DynamicClimb, IsolatedRotors, PittPeters
+from studies.analysis.propeller_200kt import DISSERTATION_CT_200KT, propeller_models_at_200kt
 
 __all__ = ["CASES", "main"]
 
@@ -44,6 +74,9 @@ CASES = {
                          lambda: coaxial_compound(cruise=True), IsolatedRotors, np.arange(0.0, 110.1, 5.0)),
 }
 
+_MODE_COLUMNS = ["speed", "track", "track_mode", "mode", "physics", "real", "imag", "frequency", "damping",
+                 "dominant_states"]
+
 
 def main(out_dir="results/trim_sweeps"):
     out = Path(out_dir)
@@ -55,14 +88,26 @@ def main(out_dir="results/trim_sweeps"):
         sweep.eigenvalues.drop(columns=["pole"]).to_csv(out / f"eigenvalues_{case}.csv", index=False)
         sweep.plot(title).savefig(out / f"trims_{case}.png", dpi=120)
         sweep.plot_eigenvalues(title).savefig(out / f"eigenvalues_{case}.png", dpi=120)
+        tracked = modes_over_speed(sweep)
+        tracked.table[_MODE_COLUMNS].to_csv(out / f"modes_{case}.csv", index=False)
+        tracked.plot(title).savefig(out / f"modes_{case}.png", dpi=120)
         t = sweep.table
         print(f"[{case}] {title}: {int(t['converged'].sum())}/{len(t)} speeds trimmed")
         cols = [c for c in ("speed", "delta_col", "delta_lon", "delta_lat", "delta_ped", "delta_prop", "phi",
                             "theta", "power_total") if c in t.columns]
         print(t[t["converged"]][cols].to_string(index=False, float_format=lambda v: f"{v:.2f}"))
+        body = tracked.table[(tracked.table["frequency"] < 5.0) & (tracked.table["mode"] != "heading")]
+        print(body.pivot_table(index="speed", columns="mode", values="damping", aggfunc="first")
+              .to_string(float_format=lambda v: f"{v:.2f}"))
         failed = t[~t["converged"]]["speed"].tolist()
         if failed:
             print(f"  no trim at {failed} m/s")
+    prop = propeller_models_at_200kt()
+    prop.to_csv(out / "propeller_200kt.csv", index=False)
+    print("[coaxial at 200 kt] rotor thrust and propeller with each propeller model")
+    print(prop.drop(columns=["CT_U_dissertation", "CT_L_dissertation"]).to_string(
+        index=False, float_format=lambda v: f"{v:.5g}"))
+    print(f"  dissertation: CT_U {DISSERTATION_CT_200KT[0]}, CT_L {DISSERTATION_CT_200KT[1]}")
     return out
 
 

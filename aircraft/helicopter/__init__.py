@@ -16,6 +16,9 @@
         derive_control_phase(sys, config), which cyclic acts on which axis
     sweep.py (not re-exported): trim_sweep(heli, speeds), trims, linear models and
         eigenvalues against speed, with figures
+    mode_tracking.py (not re-exported): flight_modes(sys) names the modes (phugoid,
+        short period, dutch roll, spiral, ...); modes_over_speed(sweep) tracks them
+        against speed (table + root-locus figure)
     hold.py (not re-exported): hold_states(sys, ["u", "v"]), states held at trim
         (a perfectly tight outer loop)
 """

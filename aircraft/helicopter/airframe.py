@@ -11,13 +11,17 @@
 * Horizontal / vertical tail: linear lift from the local angle of attack of the
   free stream (rotor downwash on the tail is not modelled), at the tail position.
 * Propeller (Bailey-type momentum rotor, Appendix B.2): thrust along +x from
-  blade-element momentum theory with uniform inflow, torque about x.
+  blade-element momentum theory with uniform inflow, torque about x; or, with
+  ``model="blade_element"``, annulus blade-element momentum theory with the
+  twist and exact inflow angles (:mod:`aircraft.helicopter.propeller`).
 """
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["fuselage_loads", "propeller_loads", "tail_rotor_loads"]
+from .propeller import propeller_blade_element
+
+__all__ = ["fuselage_loads", "propeller_loads", "tail_rotor_loads", "PROPELLER_MODELS"]
 
 
 def fuselage_loads(config, velocity, rates):
@@ -71,8 +75,22 @@ def fuselage_loads(config, velocity, rates):
     return f, m
 
 
-def propeller_loads(prop, theta, forward_speed, rho):
-    """(thrust [N] along +x, torque [N m]) of the pusher at collective ``theta`` [rad]."""
+#: propeller models of :func:`propeller_loads`
+PROPELLER_MODELS = ("momentum", "blade_element")
+
+
+def propeller_loads(prop, theta, forward_speed, rho, model="momentum"):
+    """(thrust [N] along +x, torque [N m]) of the pusher at collective ``theta`` [rad].
+
+    ``model="momentum"`` (default): uniform inflow and the small-angle formula
+    with the pitch at three-quarter radius; ``"blade_element"``: annulus
+    blade-element momentum theory with the twist and exact inflow angles
+    (:func:`~aircraft.helicopter.propeller.propeller_blade_element`).
+    """
+    if model not in PROPELLER_MODELS:
+        raise ValueError(f"model must be one of {PROPELLER_MODELS}, got {model!r}")
+    if model == "blade_element":
+        return propeller_blade_element(prop, theta, forward_speed, rho)
     if prop is None:
         return 0.0, 0.0
     vt = prop.omega * prop.radius

@@ -20,13 +20,14 @@ Eq. 2.29 with its body-rate terms Delta p / Omega, Delta q / Omega.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..configs import GRAVITY, AircraftConfig
 from ..inflow.base import InflowModel, RotorOperatingPoint, rotor_suffix
-from .airframe import fuselage_loads, propeller_loads, tail_rotor_loads
+from ..provenance import HASHED_IF_SET
+from .airframe import PROPELLER_MODELS, fuselage_loads, propeller_loads, tail_rotor_loads
 from .rotor import FLAP_STATES, RotorModel
 
 __all__ = ["Helicopter", "HelicopterSettings", "BODY_STATES"]
@@ -42,6 +43,14 @@ class HelicopterSettings:
     n_average: int = 4
     #: single rotor without a ``tail_rotor`` only: yaw moment [N m] per rad of ``theta_tr``
     tail_rotor_yaw_per_rad: float = 2.0e5
+    #: pusher propeller model (:func:`~aircraft.helicopter.airframe.propeller_loads`):
+    #: "momentum" (uniform inflow, small angles) or "blade_element" (twist, exact angles)
+    propeller_model: str = field(default="momentum", metadata=HASHED_IF_SET)
+
+    def __post_init__(self):
+        if self.propeller_model not in PROPELLER_MODELS:
+            raise ValueError(f"HelicopterSettings.propeller_model must be one of {PROPELLER_MODELS}, "
+                             f"got {self.propeller_model!r}")
 
 
 class Helicopter:
@@ -154,7 +163,8 @@ class Helicopter:
             extra[f"CQ{rotor_suffix(rc.name)}"] = out["cq"]
         loads = np.array(loads)
         if cfg.is_coaxial:
-            thrust, torque = propeller_loads(cfg.propeller, u[6], vel[0], cfg.rho)
+            thrust, torque = propeller_loads(cfg.propeller, u[6], vel[0], cfg.rho,
+                                             model=self.settings.propeller_model)
             pos = np.asarray(cfg.propeller.position, float) if cfg.propeller else np.zeros(3)
             fp = np.array([thrust, 0.0, 0.0])
             force += fp

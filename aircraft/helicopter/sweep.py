@@ -125,7 +125,8 @@ def _row(heli, speed, result):
     main = sum(extra[f"torque{rotor_suffix(rm.config.name)}"] * rm.config.omega for rm in heli.rotors)
     prop = 0.0
     if cfg.is_coaxial and cfg.propeller is not None:
-        prop = propeller_loads(cfg.propeller, result.u[6], result.x[0], cfg.rho)[1] * cfg.propeller.omega
+        prop = propeller_loads(cfg.propeller, result.u[6], result.x[0], cfg.rho,
+                               model=heli.settings.propeller_model)[1] * cfg.propeller.omega
     tail = extra.get("power_tr", 0.0)
     row.update(power_main=main / 1e3, power_tail=tail / 1e3, power_prop=prop / 1e3,
                power_total=(main + tail + prop) / 1e3, message="")
