@@ -154,13 +154,16 @@ class FitResult:
         """
         return parameter_statistics(self)
 
-    def residual_scaled_errors(self) -> np.ndarray:
+    def residual_scaled_errors(self, covariance="white", bias=None, noise="residual", alone=False) -> np.ndarray:
         """Standard errors of the free parameters scaled by the fit's residual variance,
-        in the order of ``structure.free_names`` (:func:`flightid.statistics.residual_scaled_errors`)."""
+        in the order of ``structure.free_names`` (:func:`flightid.statistics.residual_scaled_errors`
+        with its ``covariance``, ``bias``, ``noise`` and ``alone``)."""
         problem = _Problem(self.structure, self.pairs, 0.0)
         x = np.array([self.structure.values[n] for n in self.structure.free_names])
         fn = lambda v: problem.residuals(v, with_penalty=False)     # noqa: E731
-        return residual_scaled_errors(_jacobian(fn, x), fn(x))
+        runs = [p.omega.size for p in self.pairs for _ in range(2)]     # magnitude, phase
+        return residual_scaled_errors(_jacobian(fn, x), fn(x), covariance=covariance, bias=bias, noise=noise,
+                                      segments=runs, alone=alone)
 
     @property
     def condition_number(self) -> float:
