@@ -165,6 +165,15 @@ class FitResult:
         return residual_scaled_errors(_jacobian(fn, x), fn(x), covariance=covariance, bias=bias, noise=noise,
                                       segments=runs, alone=alone)
 
+    def reference_residuals(self, reference) -> np.ndarray:
+        """The fitted model's residual against ``reference`` (a MeasuredResponse, e.g. of a
+        noise-free simulation of the model) on the fit's own grids and coherence weights."""
+        if not isinstance(reference, MeasuredResponse) or not self.pairs:
+            raise IdentificationError("reference must be a MeasuredResponse, for a fit to frequency responses")
+        return np.concatenate([_pair_residual(self.structure.frequency_response(p.omega)[p.i, p.j],
+                                              _sample_pair(reference, p.output, p.input, p.omega[0], p.omega[-1],
+                                                           p.omega.size)[1], p.coh) for p in self.pairs])
+
     @property
     def condition_number(self) -> float:
         """Condition number of the Hessian in relative parameter units (inf if singular)."""

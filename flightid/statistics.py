@@ -174,23 +174,6 @@ def residual_scaled_errors(jac, residuals, *, covariance="white", bias=None, noi
     return np.sqrt(np.maximum(np.diag(cov), 0.0))
 
 
-def _bias_residuals(result, reference):
-    """Residual of the fitted model against ``reference`` on the fit's own grids and weights."""
-    from .fitting import _pair_residual, _sample_pair       # fitting imports this module
-    from .response import MeasuredResponse
-    if not isinstance(reference, MeasuredResponse):
-        raise TypeError(f"reference must be a MeasuredResponse, got {type(reference).__name__}")
-    if not result.pairs:
-        raise ValueError("reference applies to CIFER fits (frequency-response pairs) only")
-    parts = []
-    for p in result.pairs:
-        _, h_ref, _ = _sample_pair(reference, p.output, p.input, p.omega[0], p.omega[-1], p.omega.size)
-        h_model = result.structure.frequency_response(p.omega)[p.i, p.j]
-        # the data's coherence weights, as in the fit's residual
-        parts.append(_pair_residual(h_model, h_ref, p.coh))
-    return np.concatenate(parts)
-
-
 def _alone(jac, r, covariance, n_r, dof, noise, info_diag):
     """One-parameter standard errors (the others fixed): the white or HC2 formula with
     a single column of the Jacobian."""
@@ -240,8 +223,8 @@ def parameter_statistics(result, *, covariance="white", noise="residual", refere
     >>> h = 4.0 / (1j * w + 2.0) * noise
     >>> r = MeasuredResponse(h[None, None], w, np.ones((1, 1, 60)), ["u"], ["y"])
     >>> stats = parameter_statistics(fit_transfer_function(r, 0, 1, delay=False))
-    >>> list(stats.columns)[-2:]
-    ['standard_error', 'standard_error_pct']
+    >>> list(stats.columns)[-3:]
+    ['standard_error', 'standard_error_pct', 'standard_error_alone_pct']
     """
     table = result.parameters.copy()
     free = result.structure.free_names
@@ -250,7 +233,7 @@ def parameter_statistics(result, *, covariance="white", noise="residual", refere
         se = np.array([result.standard_errors[n] for n in free])
     else:
         # the fit knows its residuals and their Jacobian: it scales them with residual_scaled_errors
-        bias = None if reference is None else _bias_residuals(result, reference)
+        bias = None if reference is None else result.reference_residuals(reference)
         se = result.residual_scaled_errors(covariance=covariance, bias=bias, noise=noise)
         alone = result.residual_scaled_errors(covariance=covariance, bias=bias, noise=noise, alone=True)
     table["standard_error"] = np.nan

@@ -121,3 +121,16 @@ def test_excitation_span_by_hand():
     lead_in, span, lead_out = excitation_span(t, u)
     assert (lead_in, span, lead_out) == pytest.approx((2.0, 5.0, 3.0), abs=0.011)   # one sample
     assert excitation_span(t, np.zeros_like(t)) == (10.0, 0.0, 0.0)
+
+
+def test_a_reference_equal_to_the_data_leaves_no_noise():
+    t, u, y0 = _record()
+    y = y0 + 0.1 * np.std(y0) * np.random.default_rng(4).standard_normal(t.size)
+    data = frequency_response(t, u, y, w_min=0.5, w_max=12.0)
+    r = fit(TransferFunctionStructure(0, 1, initial={"b0": 2.0, "a0": 1.5, "tau": 0.05}), data)
+    # the whole residual is then "deterministic": nothing is left to scale the errors with
+    table = parameter_statistics(r, covariance="sandwich", reference=data)
+    assert np.all(table.standard_error == 0) and np.all(table.standard_error_alone_pct == 0)
+    assert np.all(parameter_statistics(r).standard_error > 0)
+    with pytest.raises(ValueError, match="reference must be a MeasuredResponse"):
+        parameter_statistics(r, reference=np.ones(3))
