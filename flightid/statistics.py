@@ -209,9 +209,9 @@ def parameter_statistics(result, *, covariance="white", noise="residual", refere
     DataFrame
         The columns of ``result.parameters`` (unchanged) and ``standard_error``
         (absolute, parameter units) and ``standard_error_pct`` (relative to the
-        value); NaN for fixed parameters. CIFER fits also get
-        ``standard_error_alone_pct``: the standard error with the other parameters
-        held, in % (the residual-scaled insensitivity).
+        value), and ``standard_error_alone_pct``: the standard error with the other
+        parameters held, in % (the residual-scaled insensitivity; CIFER fits only,
+        NaN for Fourier-transform fits); NaN for fixed parameters.
 
     Examples
     --------
@@ -238,8 +238,7 @@ def parameter_statistics(result, *, covariance="white", noise="residual", refere
         alone = result.residual_scaled_errors(covariance=covariance, bias=bias, noise=noise, alone=True)
     table["standard_error"] = np.nan
     table["standard_error_pct"] = np.nan
-    if alone is not None:
-        table["standard_error_alone_pct"] = np.nan
+    table["standard_error_alone_pct"] = np.nan
     for k, (n, e) in enumerate(zip(free, se)):
         row = table.parameter == n
         v = result.structure.values[n]
