@@ -158,11 +158,13 @@ class FitResult:
         """Standard errors of the free parameters scaled by the fit's residual variance,
         in the order of ``structure.free_names`` (:func:`flightid.statistics.residual_scaled_errors`
         with its ``covariance``, ``bias``, ``noise`` and ``alone``)."""
-        problem = _Problem(self.structure, self.pairs, 0.0)
-        x = np.array([self.structure.values[n] for n in self.structure.free_names])
-        fn = lambda v: problem.residuals(v, with_penalty=False)     # noqa: E731
+        if getattr(self, "_jac_res", None) is None:     # one Jacobian for every convention asked
+            problem = _Problem(self.structure, self.pairs, 0.0)
+            x = np.array([self.structure.values[n] for n in self.structure.free_names])
+            fn = lambda v: problem.residuals(v, with_penalty=False)     # noqa: E731
+            self._jac_res = (_jacobian(fn, x), fn(x))
         runs = [p.omega.size for p in self.pairs for _ in range(2)]     # magnitude, phase
-        return residual_scaled_errors(_jacobian(fn, x), fn(x), covariance=covariance, bias=bias, noise=noise,
+        return residual_scaled_errors(*self._jac_res, covariance=covariance, bias=bias, noise=noise,
                                       segments=runs, alone=alone)
 
     def reference_residuals(self, reference) -> np.ndarray:
