@@ -29,7 +29,7 @@ a flight-test record or a wind-tunnel record.
     FitResult.model  ─►  control.StateSpace (Padé delays)  ─►  verify (TIC, RMS)
 """
 
-from .errors import IdentificationError, DataError
+from .errors import IdentificationError, DataError, SettlingWarning
 from .sweeps import frequency_sweep, doublet, multistep_3211
 from .multisine import orthogonal_multisine
 from .flight_data import read_flight_data, concatenated_response
@@ -41,7 +41,7 @@ from .transfer_function import TransferFunctionStructure, fit_transfer_function
 from .state_space import StateSpaceStructure
 from .fitting import fit, FitResult, cifer_cost
 from .fourier import identify
-from .reduction import reduce
+from .reduction import reduce, ReductionRule
 from .verification import verify
 from .staging import fit_staged
 
@@ -50,4 +50,4 @@ __all__ = ["IdentificationError", "DataError", "frequency_sweep", "doublet", "mu
            "MeasuredResponse", "combine_responses", "joint_input_output", "mimo_response", "ModelStructure",
            "MLTauStructure", "FGCStructure", "GainDelayStructure", "TransferFunctionStructure",
            "StateSpaceStructure", "fit", "FitResult", "fit_transfer_function", "identify", "reduce", "verify",
-           "fit_staged", "cifer_cost"]
+           "fit_staged", "cifer_cost", "SettlingWarning", "ReductionRule"]

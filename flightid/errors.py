@@ -13,7 +13,7 @@ argument and what is allowed:
 """
 
 __all__ = ["IdentificationError", "DataError", "InputValueError", "SignalNameError",
-           "SingularInputError", "UnstableModelError"]
+           "SingularInputError", "UnstableModelError", "SettlingWarning"]
 
 
 class IdentificationError(ValueError):
@@ -53,3 +53,9 @@ class SingularInputError(IdentificationError):
 
 class UnstableModelError(IdentificationError):
     """A fitted model has eigenvalues in the right half plane."""
+
+
+class SettlingWarning(UserWarning):
+    """A record's lead-in or lead-out (input at trim before and after the excitation) is
+    shorter than the response needs to settle, or its excitation holds fewer than two
+    periods of the lowest analysed frequency."""

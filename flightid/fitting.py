@@ -154,13 +154,27 @@ class FitResult:
         """
         return parameter_statistics(self)
 
-    def residual_scaled_errors(self) -> np.ndarray:
+    def residual_scaled_errors(self, covariance="white", bias=None, noise="residual", alone=False) -> np.ndarray:
         """Standard errors of the free parameters scaled by the fit's residual variance,
-        in the order of ``structure.free_names`` (:func:`flightid.statistics.residual_scaled_errors`)."""
-        problem = _Problem(self.structure, self.pairs, 0.0)
-        x = np.array([self.structure.values[n] for n in self.structure.free_names])
-        fn = lambda v: problem.residuals(v, with_penalty=False)     # noqa: E731
-        return residual_scaled_errors(_jacobian(fn, x), fn(x))
+        in the order of ``structure.free_names`` (:func:`flightid.statistics.residual_scaled_errors`
+        with its ``covariance``, ``bias``, ``noise`` and ``alone``)."""
+        if getattr(self, "_jac_res", None) is None:     # one Jacobian for every convention asked
+            problem = _Problem(self.structure, self.pairs, 0.0)
+            x = np.array([self.structure.values[n] for n in self.structure.free_names])
+            fn = lambda v: problem.residuals(v, with_penalty=False)     # noqa: E731
+            self._jac_res = (_jacobian(fn, x), fn(x))
+        runs = [p.omega.size for p in self.pairs for _ in range(2)]     # magnitude, phase
+        return residual_scaled_errors(*self._jac_res, covariance=covariance, bias=bias, noise=noise,
+                                      segments=runs, alone=alone)
+
+    def reference_residuals(self, reference) -> np.ndarray:
+        """The fitted model's residual against ``reference`` (a MeasuredResponse, e.g. of a
+        noise-free simulation of the model) on the fit's own grids and coherence weights."""
+        if not isinstance(reference, MeasuredResponse) or not self.pairs:
+            raise IdentificationError("reference must be a MeasuredResponse, for a fit to frequency responses")
+        return np.concatenate([_pair_residual(self.structure.frequency_response(p.omega)[p.i, p.j],
+                                              _sample_pair(reference, p.output, p.input, p.omega[0], p.omega[-1],
+                                                           p.omega.size)[1], p.coh) for p in self.pairs])
 
     @property
     def condition_number(self) -> float:

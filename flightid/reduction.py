@@ -18,17 +18,89 @@ gain was removed) are held fixed at their value, and the log says so.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
 from tqdm.auto import tqdm
 
 from ._validation import real_scalar
-from .errors import IdentificationError, UnstableModelError
+from .errors import IdentificationError, InputValueError, UnstableModelError
 from .fitting import FitResult, fit
+from .statistics import COVARIANCES, NOISE_ESTIMATES, parameter_statistics
 
-__all__ = ["reduce", "ReductionResult"]
+__all__ = ["reduce", "ReductionResult", "ReductionRule", "STATISTICS"]
+
+#: Statistics a reduction (and the trust rule) can judge a parameter's determination by.
+STATISTICS = ("cifer", "residual")
+
+
+@dataclass(frozen=True)
+class ReductionRule:
+    """Which statistic and which cost-rise limits judge a parameter: one settings place for
+    :func:`reduce` and the trust rule (``aircraft.identification.trust_check(..., rule=...)``).
+
+    Parameters
+    ----------
+    statistic : {"cifer", "residual"}
+        ``"cifer"`` (default): a parameter is poorly determined when its Cramér-Rao
+        bound exceeds the limit (the dissertation's guideline, blind to the noise
+        level). ``"residual"``: when its residual-scaled standard error
+        (:func:`flightid.statistics.parameter_statistics`, one standard deviation,
+        in % of the value) exceeds the same limit, and it is insensitive when its
+        standard error with the others held (``standard_error_alone_pct``) exceeds
+        the insensitivity limit.
+    covariance : {"white", "sandwich"}
+        Convention of the residual-scaled standard error (``statistic="residual"`` only).
+    noise : {"residual", "differences"}
+        What measures the noise in that standard error (``statistic="residual"`` only;
+        :func:`flightid.statistics.residual_scaled_errors`).
+    relative_rise : float, optional
+        Rise limits relative to the first fit's J_ave, counted from the first fit
+        (see :func:`reduce`). None (default): the absolute, step-by-step limits.
+
+    Raises
+    ------
+    ValueError
+        An unknown statistic or covariance, or a non-positive ``relative_rise``.
+
+    Examples
+    --------
+    >>> ReductionRule(statistic="residual", relative_rise=0.5).column
+    'standard_error_pct'
+    """
+
+    statistic: str = "cifer"
+    covariance: str = "white"
+    noise: str = "residual"
+    relative_rise: float | None = None
+
+    def __post_init__(self):
+        if not (isinstance(self.noise, str) and self.noise in NOISE_ESTIMATES):
+            raise InputValueError(f"noise must be one of {NOISE_ESTIMATES}, got {self.noise!r}")
+        if not (isinstance(self.statistic, str) and self.statistic in STATISTICS):
+            raise InputValueError(f"statistic must be one of {STATISTICS}, got {self.statistic!r}")
+        if not (isinstance(self.covariance, str) and self.covariance in COVARIANCES):
+            raise InputValueError(f"covariance must be one of {COVARIANCES}, got {self.covariance!r}")
+        if self.relative_rise is not None:
+            object.__setattr__(self, "relative_rise",
+                               real_scalar("relative_rise", self.relative_rise, positive=True))
+
+    @property
+    def column(self) -> str:
+        """Column of the parameter table the determination limit applies to."""
+        return "cramer_rao_pct" if self.statistic == "cifer" else "standard_error_pct"
+
+    @property
+    def insensitivity_column(self) -> str:
+        """Column of the parameter table the insensitivity limit applies to."""
+        return "insensitivity_pct" if self.statistic == "cifer" else "standard_error_alone_pct"
+
+    def table(self, result) -> pd.DataFrame:
+        """``result``'s parameter table with the rule's statistic (``self.column``) in it."""
+        if self.statistic == "cifer":
+            return result.parameters
+        return parameter_statistics(result, covariance=self.covariance, noise=self.noise)
 
 
 @dataclass
@@ -38,6 +110,8 @@ class ReductionResult:
     result: FitResult
     initial: FitResult
     log: pd.DataFrame
+    #: the statistic and rise limits the reduction used
+    rule: ReductionRule = ReductionRule()
 
     @property
     def removed(self) -> list:
@@ -75,7 +149,7 @@ def _runaway(before, after, runaway_factor, max_condition, refuse_flat):
 
 def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_rise_average=2.0,
            max_rise_single=10.0, protected=(), max_steps=100, progress=False, runaway_factor=100.0,
-           max_condition=1e10, refuse_flat=True, batch=1, relative_rise=None,
+           max_condition=1e10, refuse_flat=True, batch=1, relative_rise=None, rule=None,
            **fit_kwargs) -> ReductionResult:
     """Remove insensitive / poorly determined parameters while the fit stays good.
 
@@ -85,7 +159,8 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         As for :func:`fit` (``fit_kwargs`` are passed on, with the same pairs
         and frequency ranges at every step so costs are comparable).
     insensitivity_max, cramer_rao_max : float
-        Candidate thresholds [%] (guideline: 10 % and 20 %).
+        Candidate thresholds [%] (guideline: 10 % and 20 %); ``cramer_rao_max``
+        applies to the rule's statistic (the standard error with ``"residual"``).
     max_rise_average, max_rise_single : float
         Acceptable rise of J_ave and of any single J after a removal.
     protected : iterable of str
@@ -115,7 +190,12 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
         ``5 * relative_rise * J_ave_first`` above its first-fit value (the 2 : 10
         ratio of the absolute guideline). At low noise (J_ave << 1) the absolute
         limits accept removals the data reject; these follow the noise. None
-        (default) keeps the absolute limits.
+        (default) keeps the absolute limits. Shorthand for
+        ``rule=ReductionRule(relative_rise=...)``.
+    rule : ReductionRule, optional
+        The statistic that selects poorly determined parameters (``cramer_rao_max``
+        then applies to it) and the rise limits, in one place the trust rule also
+        takes. Default: ``ReductionRule()`` (CIFER bounds, absolute limits).
 
     Returns
     -------
@@ -137,8 +217,16 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
     """
     if isinstance(batch, bool) or not isinstance(batch, (int, np.integer)) or batch < 1:
         raise IdentificationError(f"batch must be an integer >= 1, got {batch!r}")
-    if relative_rise is not None:
-        relative_rise = real_scalar("relative_rise", relative_rise, positive=True)
+    if rule is None:
+        rule = ReductionRule(relative_rise=relative_rise)
+    elif not isinstance(rule, ReductionRule):
+        raise InputValueError(f"rule must be a ReductionRule, got {type(rule).__name__}")
+    elif relative_rise is not None:
+        if rule.relative_rise not in (None, relative_rise):
+            raise InputValueError(f"relative_rise={relative_rise!r} contradicts rule.relative_rise="
+                                  f"{rule.relative_rise!r}: give it in one place")
+        rule = replace(rule, relative_rise=relative_rise)
+    relative_rise = rule.relative_rise
     current = fit(structure, data, **fit_kwargs)
     initial = current
     pairs = [(p.output, p.input) for p in current.pairs]
@@ -181,13 +269,16 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
 
     steps = 0
     while steps < max_steps:
-        table = current.parameters[current.parameters.status == "free"]
+        table = rule.table(current)
+        table = table[table.status == "free"]
         table = table[~table.parameter.isin(tried)]
-        ins = table[table.insensitivity_pct > insensitivity_max].sort_values("insensitivity_pct", ascending=False)
-        crb = table[table.cramer_rao_pct > cramer_rao_max].sort_values("cramer_rao_pct", ascending=False)
+        icol, col = rule.insensitivity_column, rule.column
+        ins = table[table[icol] > insensitivity_max].sort_values(icol, ascending=False)
+        crb = table[table[col] > cramer_rao_max].sort_values(col, ascending=False)
+        reason = "cramer_rao" if rule.statistic == "cifer" else "standard_error"
         # the worst first: insensitive parameters, then poorly determined ones
-        candidates = [(n, "insensitivity", m) for n, m in zip(ins.parameter, ins.insensitivity_pct)]
-        candidates += [(n, "cramer_rao", m) for n, m in zip(crb.parameter, crb.cramer_rao_pct)
+        candidates = [(n, "insensitivity", m) for n, m in zip(ins.parameter, ins[icol])]
+        candidates += [(n, reason, m) for n, m in zip(crb.parameter, crb[col])
                        if n not in set(ins.parameter)]
         if not candidates:
             break
@@ -224,4 +315,4 @@ def reduce(structure, data, *, insensitivity_max=10.0, cramer_rao_max=20.0, max_
     bar.close()
     columns = ["parameter", "reason", "metric_pct", "J_ave_before", "J_ave_after",
                "max_single_rise", "accepted", "runaway", "note"]
-    return ReductionResult(current, initial, pd.DataFrame(log, columns=columns))
+    return ReductionResult(current, initial, pd.DataFrame(log, columns=columns), rule)

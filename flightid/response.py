@@ -9,15 +9,22 @@ also carries the coherence of every element.
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pandas as pd
 import control
 from scipy.signal import czt
 
 from ._validation import integer, names_in, real_array, real_scalar
-from .errors import DataError, InputValueError, SignalNameError
+from .errors import DataError, InputValueError, SettlingWarning, SignalNameError
 
-__all__ = ["MeasuredResponse", "frequency_response", "combine_responses"]
+__all__ = ["MeasuredResponse", "frequency_response", "combine_responses", "excitation_span"]
+
+#: The input is at trim while it stays within this fraction of its largest excursion from
+#: the first sample: a designed sweep's half-cosine fade stays under it for a fraction of a
+#: period, and a flight record's trim noise is usually well below it.
+_QUIET_FRACTION = 0.05
 
 
 class MeasuredResponse(control.FrequencyResponseData):
@@ -308,7 +315,8 @@ def _composite(records, dt, omega, windows, overlap, cycles_per_window):
 
 def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decade=25,
                        windows=None, n_windows=5, max_window=None, min_window=None, overlap=0.8,
-                       cycles_per_window=2.0, input_name="u", output_names=None, name=None):
+                       cycles_per_window=2.0, input_name="u", output_names=None, name=None,
+                       settling_time=None):
     """SISO/SIMO frequency response by chirp-z transform with composite windowing.
 
     Parameters
@@ -336,11 +344,23 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
         the record must therefore be at least ``2 * cycles * 2 pi / w_min`` long.
     input_name, output_names : str, list of str
         Signal names carried by the result.
+    settling_time : float, optional
+        Time [s] the response needs to settle after a change of input; the
+        record's lead-in and lead-out at trim (:func:`excitation_span`) should be
+        at least this long. Default ``1 / w_min``: the time constant of a lag at
+        the lowest analysed frequency, the slowest mode the response claims to
+        resolve.
 
     Returns
     -------
     MeasuredResponse
         Shape (n_outputs, 1, n_points), with coherence.
+
+    Warns
+    -----
+    SettlingWarning
+        The lead-in or lead-out is shorter than ``settling_time``, or the
+        excitation lasts fewer than two periods of ``w_min``.
 
     Notes
     -----
@@ -384,9 +404,63 @@ def frequency_response(t, u, y, *, w_min, w_max, n_points=None, points_per_decad
         raise DataError(f"output names must be unique and differ from the input name "
                         f"{input_name!r}, got {output_names}")
 
+    settling_time = (1.0 / omega[0] if settling_time is None else
+                     real_scalar("settling_time", settling_time, nonnegative=True, unit="s"))
+    _check_settling(t, u, omega[0], settling_time)
     h, coh = _composite([(u, y)], dt, omega, windows, overlap, cycles_per_window)
     return MeasuredResponse(h[:, None, :], omega, coh[:, None, :], [input_name],
                             list(output_names), name=name)
+
+
+def excitation_span(t, u):
+    """Lead-in, excitation and lead-out of a record: how long the input stays at trim.
+
+    The input is at trim while it stays within 5 % of its largest excursion from its
+    first sample.
+
+    Parameters
+    ----------
+    t, u : array_like
+        Time [s] and the input.
+
+    Returns
+    -------
+    tuple of float
+        ``(lead_in, excitation, lead_out)`` [s]; a record without excitation
+        returns ``(T, 0, 0)`` with T its length.
+
+    Examples
+    --------
+    >>> from flightid import frequency_sweep
+    >>> t, u = frequency_sweep(0.5, 20.0, 60.0, 0.01, trim_start=4.0, trim_end=2.0)
+    >>> lead_in, span, lead_out = excitation_span(t, u)     # the fade-in stays quiet for 1.2 s
+    >>> round(lead_in, 1), round(lead_out, 1)
+    (5.2, 2.0)
+    """
+    t = np.asarray(t, float)
+    dev = np.abs(np.asarray(u, float) - float(np.asarray(u, float)[0]))
+    peak = dev.max() if dev.size else 0.0
+    active = np.flatnonzero(dev > _QUIET_FRACTION * peak) if peak > 0 else np.array([], int)
+    if not active.size:
+        return float(t[-1] - t[0]), 0.0, 0.0
+    first, last = active[0], active[-1]
+    return float(t[first] - t[0]), float(t[last] - t[first]), float(t[-1] - t[last])
+
+
+def _check_settling(t, u, w_min, settling_time, stacklevel=3):
+    """Warn (SettlingWarning) when the record's trims or excitation are too short."""
+    lead_in, span, lead_out = excitation_span(t, u)
+    short = [f"{name} {v:.3g} s" for name, v in (("lead-in", lead_in), ("lead-out", lead_out))
+             if v < settling_time]
+    if short:
+        warnings.warn(f"the record's {' and '.join(short)} at trim is shorter than the response's settling "
+                      f"time {settling_time:.3g} s (default 1 / w_min): the transient to the start or the "
+                      "end of the excitation is cut off; lengthen the trims or pass settling_time [s]",
+                      SettlingWarning, stacklevel=stacklevel)
+    if span < 4 * np.pi / w_min:
+        warnings.warn(f"the excitation lasts {span:.3g} s, fewer than two periods of w_min = {w_min:.3g} "
+                      f"rad/s ({4 * np.pi / w_min:.3g} s): the record is long enough only through its trims; "
+                      "lengthen the sweep or raise w_min", SettlingWarning, stacklevel=stacklevel)
 
 
 def combine_responses(responses, name=None) -> MeasuredResponse:

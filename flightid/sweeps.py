@@ -10,7 +10,7 @@ import warnings
 import numpy as np
 
 from ._validation import integer, real_scalar
-from .errors import DataError, InputValueError
+from .errors import DataError, InputValueError, SettlingWarning
 
 __all__ = ["frequency_sweep", "shaped_noise", "doublet", "multistep_3211"]
 
@@ -30,7 +30,7 @@ def _check_positive(**values):
 
 
 def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0,
-                    trim_end=3.0, noise_fraction=0.0, seed=None, fade_cycles=0.5):
+                    trim_end=3.0, noise_fraction=0.0, seed=None, fade_cycles=0.5, settling_time=None):
     """CIFER-style swept sine with trim lead-in and lead-out.
 
     The instantaneous frequency grows log-linearly (exponentially in time) from
@@ -61,12 +61,20 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
         half-cosine so the input starts and ends at trim without a step. Fades
         longer than the sweep together raise :class:`InputValueError`.
 
+    settling_time : float, optional
+        Time [s] the response needs to settle after a change of input; each trim
+        should be at least this long. Default ``1 / w_min`` (the time constant of
+        a lag at the lowest swept frequency), the default of
+        :func:`frequency_response`'s check.
+
     Warns
     -----
     UserWarning
         When the whole record (trims included) is shorter than
         :func:`frequency_response` needs to resolve ``w_min`` with its default
         windows (``8 pi / w_min``: two windows of two periods).
+    SettlingWarning
+        When ``trim_start`` or ``trim_end`` is shorter than ``settling_time``.
 
     Returns
     -------
@@ -102,6 +110,14 @@ def frequency_sweep(w_min, w_max, duration, dt, amplitude=1.0, *, trim_start=3.0
                               f"than the sweep (duration = {duration:.4g} s): the fades would overlap and "
                               f"the envelope jump; use fade_cycles <= "
                               f"{duration / (2 * np.pi / w_min + 2 * np.pi / w_max):.4g}")
+    settling_time = (1.0 / w_min if settling_time is None else
+                     real_scalar("settling_time", settling_time, nonnegative=True, unit="s"))
+    short = [f"{n} = {v:.3g} s" for n, v in (("trim_start", trim_start), ("trim_end", trim_end))
+             if v < settling_time]
+    if short:
+        warnings.warn(f"{' and '.join(short)} shorter than the response's settling time {settling_time:.3g} s "
+                      "(default 1 / w_min): the transient to the start or the end of the sweep would be cut "
+                      "off; lengthen the trims [s]", SettlingWarning, stacklevel=2)
     record = trim_start + duration + trim_end
     needed = 2 * 2.0 * 2 * np.pi / w_min
     if record < needed:

@@ -45,6 +45,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from flightid.reduction import ReductionRule
+
 __all__ = ["TRUST_J_AVE_MAX", "TrustCheck", "trust_check", "ReproductionCheck", "reproduction_check",
            "REPRODUCTION_RULES", "refit_structure"]
 
@@ -60,8 +62,8 @@ class TrustCheck:
     Attributes
     ----------
     table : pandas.DataFrame
-        One row per free parameter: ``parameter``, ``cramer_rao_pct``,
-        ``insensitivity_pct`` [%], ``verdict`` (``"ok"``, ``"kept"`` or ``"fails"``) and
+        One row per free parameter: ``parameter``, ``cramer_rao_pct`` (``standard_error_pct``
+        with a residual rule), ``insensitivity_pct`` [%], ``verdict`` (``"ok"``, ``"kept"`` or ``"fails"``) and
         ``reason`` (empty for ``"ok"``).
     failures : list of str
         Why the model is not trusted (empty when it is).
@@ -97,9 +99,12 @@ class TrustCheck:
         ax = fig.add_subplot(111)
         x = np.arange(len(self.table))
         colours = {"ok": "tab:green", "kept": "tab:orange", "fails": "tab:red"}
-        ax.bar(x - 0.2, self.table.cramer_rao_pct.clip(upper=1e4), 0.4,
-               color=[colours[v] for v in self.table.verdict], label="Cramér-Rao [%]")
-        ax.bar(x + 0.2, self.table.insensitivity_pct.clip(upper=1e4), 0.4, color="0.6", label="insensitivity [%]")
+        # the statistic the check judged by: the Cramér-Rao bound or the standard error
+        col = "cramer_rao_pct" if "cramer_rao_pct" in self.table else "standard_error_pct"
+        ax.bar(x - 0.2, self.table[col].clip(upper=1e4), 0.4, color=[colours[v] for v in self.table.verdict],
+               label="Cramér-Rao [%]" if col == "cramer_rao_pct" else "standard error [%]")
+        icol = "insensitivity_pct" if "insensitivity_pct" in self.table else "standard_error_alone_pct"
+        ax.bar(x + 0.2, self.table[icol].clip(upper=1e4), 0.4, color="0.6", label="insensitivity [%]")
         ax.axhline(self.limits.get("cramer_rao_max", 20.0), color="k", ls="--", lw=0.8)
         ax.axhline(self.limits.get("insensitivity_max", 10.0), color="0.4", ls=":", lw=0.8)
         ax.set_yscale("log")
@@ -411,7 +416,8 @@ def refit_structure(model, responses):
     return fit(begin, responses, **kwargs)
 
 
-def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=10.0, reproduction=None):
+def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=10.0, reproduction=None,
+                rule=None):
     """Whether an identified model is trusted, parameter by parameter, with the reasons.
 
     Parameters
@@ -431,6 +437,17 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
         own ``reproduction`` if it has one): its ``passes`` enters the verdict, its
         ``same_structure`` is reported in ``limits["reproduction_structure"]``. Without one
         the reproduction is reported as not checked, not as a failure.
+    rule : flightid.reduction.ReductionRule, optional
+        The statistic and rise limits, as given to :func:`flightid.reduce`. With
+        ``statistic="residual"`` a parameter is judged by its residual-scaled standard
+        errors (columns ``standard_error_pct`` and ``standard_error_alone_pct``; the
+        model's fit must be a :class:`flightid.FitResult`) against
+        ``settings.cramer_rao_max`` and ``settings.insensitivity_max``; with
+        ``relative_rise`` a refused removal keeps a parameter when it raised J_ave by
+        more than ``relative_rise`` times the first fit's J_ave or one response's J
+        by more than five times that (the reduction's own relative limits), instead
+        of ``max_rise_average`` / ``max_rise_single``. Default: ``ReductionRule()``
+        (the Cramér-Rao bound and the absolute limits).
 
     Returns
     -------
@@ -455,6 +472,10 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
     for name, v in (("max_rise_average", max_rise_average), ("max_rise_single", max_rise_single)):
         if not (isinstance(v, (int, float)) and v > 0):
             raise ValueError(f"{name} must be positive, got {v!r}")
+    if rule is None:
+        rule = ReductionRule()
+    elif not isinstance(rule, ReductionRule):
+        raise ValueError(f"rule must be a flightid.reduction.ReductionRule, got {type(rule).__name__}")
     j_max = TRUST_J_AVE_MAX if j_ave_max is None else j_ave_max
     if not (isinstance(j_max, (int, float)) and j_max > 0):
         raise ValueError(f"j_ave_max must be positive, got {j_ave_max!r}")
@@ -471,12 +492,23 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
     if log is None and isinstance(stored, pd.DataFrame) and len(stored):
         log = stored
     keep_rule = isinstance(log, pd.DataFrame)
+    if rule.statistic == "residual":
+        if not hasattr(fit, "residual_scaled_errors"):
+            raise ValueError(f"model {getattr(model, 'name', model)!r} holds no fit to compute residual-scaled "
+                             "standard errors from (rule.statistic='residual')")
+        params = rule.table(fit)
+    column, label = rule.column, ("Cramér-Rao" if rule.statistic == "cifer" else "standard error")
+    rises = (max_rise_average, max_rise_single)
+    if rule.relative_rise is not None and keep_rule:
+        initial = getattr(reduction, "initial", None)
+        j_first = float(initial.J_ave) if initial is not None else float(log.J_ave_before.iloc[0])
+        rises = (rule.relative_rise * j_first, 5 * rule.relative_rise * j_first)
     free = params[params.status == "free"]
     failures, rows = [], []
     if not len(free):
         failures.append("no free parameter")
     for p in free.itertuples():
-        cr, ins = float(p.cramer_rao_pct), float(p.insensitivity_pct)
+        cr, ins = float(getattr(p, column)), float(getattr(p, rule.insensitivity_column))
         bad_cr, bad_ins = not cr < cr_max, not ins < ins_max
         if not (bad_cr or bad_ins):
             rows.append((p.parameter, cr, ins, "ok", ""))
@@ -484,12 +516,12 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
             rows.append((p.parameter, cr, ins, "fails", f"insensitivity {ins:.3g} % >= {ins_max:g} %: it hardly "
                          "moves the cost, so no cost rise can keep it"))
         elif not keep_rule:
-            rows.append((p.parameter, cr, ins, "fails", f"Cramér-Rao {cr:.3g} % >= {cr_max:g} % (no reduction log "
+            rows.append((p.parameter, cr, ins, "fails", f"{label} {cr:.3g} % >= {cr_max:g} % (no reduction log "
                          "says its removal is too costly)"))
         else:
-            rows.append((p.parameter, cr, ins) + _keep_verdict(p.parameter, cr, cr_max, log, max_rise_average,
-                                                               max_rise_single))
-    table = pd.DataFrame(rows, columns=["parameter", "cramer_rao_pct", "insensitivity_pct", "verdict", "reason"])
+            rows.append((p.parameter, cr, ins) + _keep_verdict(p.parameter, cr, cr_max, log, *rises, label=label,
+                                                               from_first=rule.relative_rise is not None))
+    table = pd.DataFrame(rows, columns=["parameter", column, rule.insensitivity_column, "verdict", "reason"])
     bad = table[table.verdict == "fails"]
     if len(bad):
         failures.append(f"parameters outside the bounds and not kept by the guideline: {bad.parameter.tolist()}")
@@ -512,29 +544,34 @@ def trust_check(model, *, j_ave_max=None, max_rise_average=2.0, max_rise_single=
                         + "; ".join(reproduction.failures))
     same = getattr(reproduction, "same_structure", None) if reproduction is not None else None
     limits = {"cramer_rao_max": cr_max, "insensitivity_max": ins_max, "j_ave_max": float(j_max),
-              "max_rise_average": float(max_rise_average), "max_rise_single": float(max_rise_single),
+              "max_rise_average": float(rises[0]), "max_rise_single": float(rises[1]),
               "keep_rule": keep_rule,
               "reproduction": "not checked" if reproduction is None else
               ("reproduced" if reproduction.passes else "not reproduced"),
               # reported, not required (see reproduction_check)
               "reproduction_structure": "not checked" if same is None else ("same" if same else "different")}
+    if rule != ReductionRule():
+        limits["rule"] = rule
     return TrustCheck(table, failures, limits)
 
 
-def _keep_verdict(name, cr, cr_max, log, max_rise_average, max_rise_single):
-    """(verdict, reason) of a parameter over the Cramér-Rao bound, from the reduction's log."""
+def _keep_verdict(name, cr, cr_max, log, max_rise_average, max_rise_single, label="Cramér-Rao",
+                  from_first=False):
+    """(verdict, reason) of a parameter over the bound, from the reduction's log (rises of J_ave
+    step by step, or counted from the first fit with ``from_first``)."""
     tries = log[(log.parameter == name) & ~log.accepted.astype(bool)]
+    j_first = float(log.J_ave_before.iloc[0]) if len(log) else np.nan
     for t in tries.itertuples():
-        rise_avg = float(t.J_ave_after) - float(t.J_ave_before)
+        rise_avg = float(t.J_ave_after) - (j_first if from_first else float(t.J_ave_before))
         rise_one = float(t.max_single_rise)
         if bool(t.runaway) or not (np.isfinite(rise_avg) and np.isfinite(rise_one)):
             continue
         if rise_avg > max_rise_average or rise_one > max_rise_single:
-            return "kept", (f"Cramér-Rao {cr:.3g} % >= {cr_max:g} %, kept: removing it raised J_ave by "
+            return "kept", (f"{label} {cr:.3g} % >= {cr_max:g} %, kept: removing it raised J_ave by "
                             f"{rise_avg:.3g} (limit {max_rise_average:g}) and one response's J by {rise_one:.3g} "
                             f"(limit {max_rise_single:g})")
     why = ("its removal was refused only because the fit ran away (a flat valley, not a kept parameter)"
            if len(tries) and tries.runaway.astype(bool).any() else
            "the reduction never found its removal too costly" if len(tries) else
            "the reduction did not try to remove it")
-    return "fails", f"Cramér-Rao {cr:.3g} % >= {cr_max:g} %: {why}"
+    return "fails", f"{label} {cr:.3g} % >= {cr_max:g} %: {why}"

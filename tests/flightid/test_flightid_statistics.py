@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.signal import lsim
 
-from flightid import fit, frequency_response, frequency_sweep, reduce
+from flightid import ReductionRule, fit, frequency_response, frequency_sweep, reduce
 from flightid.transfer_function import TransferFunctionStructure
 
 
@@ -63,6 +63,31 @@ def test_relative_rise_keeps_a_delay_the_data_pin_down():
     # relative limits (J_ave may rise by 50 % of the first fit's) keep it, at its truth
     assert relative.removed == []
     assert relative.result.structure.values["tau"] == pytest.approx(0.005, rel=0.1)   # 10 %: ~2 SE
+    # the residual statistic sees it pinned down too (the CIFER bound and insensitivity of
+    # 186 % and 87 % do not follow the 1 % noise): it is no candidate at all
+    for rule in (ReductionRule(statistic="residual"), ReductionRule(statistic="residual", noise="differences",
+                                                                    covariance="sandwich")):
+        residual = reduce(s, data, rule=rule)
+        assert residual.removed == [] and len(residual.log) == 0 and residual.rule == rule
+    assert first.loc["tau", "insensitivity_pct"] > 10 and first.loc["tau", "cramer_rao_pct"] > 20
+    # the same rule still removes a delay the data do not hold (4 / (s + 2), no delay)
+    t2, u2 = frequency_sweep(0.5, 20.0, 60.0, 0.01, seed=0)
+    y2 = lsim(([4.0], [1.0, 2.0]), u2, t2)[1] * (1 + 0.01 * np.random.default_rng(2).standard_normal(t2.size))
+    none = reduce(s, frequency_response(t2, u2, y2, w_min=0.5, w_max=20.0), rule=ReductionRule(statistic="residual"))
+    assert none.removed == ["tau"]
+
+
+def test_the_rule_is_one_place():
+    data = frequency_response(*_sweep_record(0.01, 5)[:3], w_min=0.5, w_max=12.0)
+    s = TransferFunctionStructure(0, 1, initial={"b0": 2.0, "a0": 1.5, "tau": 0.05})
+    with pytest.raises(ValueError, match="contradicts rule.relative_rise"):
+        reduce(s, data, relative_rise=0.5, rule=ReductionRule(relative_rise=0.2))
+    for bad, match in ((dict(statistic="bayes"), "statistic must be"), (dict(noise="x"), "noise must be"),
+                       (dict(relative_rise=-1.0), "relative_rise")):
+        with pytest.raises(ValueError, match=match):
+            ReductionRule(**bad)
+    # the keyword is shorthand for the rule
+    assert reduce(s, data, relative_rise=0.5).rule == ReductionRule(relative_rise=0.5)
 
 
 def test_joint_input_output_propagated_coherence_against_monte_carlo():

@@ -251,3 +251,39 @@ def test_the_table_of_both_parts_puts_the_judged_part_first():
     assert old.to_pandas().part.tolist()[:2] == ["identification"] * 2
     failed = reproduction_check(first, refit_error="no coherent point").to_pandas()
     assert failed.part.tolist() == ["refit"] * 2 and not failed.reproduced.any()
+
+
+def test_relative_rise_rule_keeps_by_the_first_fits_cost():
+    from flightid import ReductionRule
+    # first fit J_ave 0.1; removing b raised J_ave to 0.16 and one J by 0.05
+    m = _model([("b", 31.0, 2.0)], [("b", "cramer_rao", 31.0, 0.1, 0.16, 0.05, False, False, "")], J_ave=0.1)
+    # absolute limits (+2, +10): the rise is nothing, b fails
+    assert trust_check(m).table.verdict.tolist() == ["fails"]
+    # relative 0.5: limits 0.5 * 0.1 = 0.05 on J_ave and 0.25 on one J: 0.06 > 0.05 keeps b
+    g = trust_check(m, rule=ReductionRule(relative_rise=0.5))
+    assert g.passes and g.table.verdict.tolist() == ["kept"]
+    assert g.limits["max_rise_average"] == pytest.approx(0.05) and g.limits["max_rise_single"] == pytest.approx(0.25)
+    with pytest.raises(ValueError, match="rule must be"):
+        trust_check(m, rule={"relative_rise": 0.5})
+
+
+def test_residual_statistic_rule_judges_by_the_standard_errors():
+    import numpy as np
+    from scipy.signal import lsim
+    from flightid import ReductionRule, fit, frequency_response, frequency_sweep
+    from flightid.transfer_function import TransferFunctionStructure
+    # 2 e^{-0.005 s} / (s + 1.5) at 1 % output noise: the delay is ~16 standard errors from zero
+    t, u = frequency_sweep(0.3, 30.0, 90.0, 0.005, trim_start=20.0, trim_end=5.0, noise_fraction=0.2, seed=0)
+    y = lsim(([2.0], [1.0, 1.5]), np.concatenate([[0.0], u[:-1]]), t)[1]
+    y = y + 0.01 * np.std(y) * np.random.default_rng(1).standard_normal(t.size)
+    r = fit(TransferFunctionStructure(0, 1, initial={"b0": 1.5, "a0": 1.0, "tau": 0.01}),
+            frequency_response(t, u, y, w_min=0.5, w_max=12.0))
+    m = SimpleNamespace(name="fit", settings=None, fit=r, J_ave=r.J_ave, reduction=None)
+    # CIFER's bounds do not follow the noise: tau fails them (insensitivity ~87 %)
+    assert trust_check(m).table.set_index("parameter").verdict["tau"] == "fails"
+    g = trust_check(m, rule=ReductionRule(statistic="residual"))
+    assert g.passes and list(g.table.columns[1:3]) == ["standard_error_pct", "standard_error_alone_pct"]
+    assert g.table.set_index("parameter").standard_error_pct["tau"] < 10
+    # a stand-in without a fit to compute them from is refused, by name
+    with pytest.raises(ValueError, match="residual-scaled"):
+        trust_check(_model([("b", 5.0, 1.0)]), rule=ReductionRule(statistic="residual"))
