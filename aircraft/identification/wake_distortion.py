@@ -49,7 +49,7 @@ _OUTPUTS = ["lam0", "lam1s", "lam1c"]
 _AXES = (("1s", "lam1s", "CL", "beta1s_dot"), ("1c", "lam1c", "CM", "beta1c_dot"))
 
 
-def kr_frequency_response(lam_over_u, rotor_omega, lbar22):
+def kr_frequency_response(lam_over_u, rotor_omega, lbar22, weighted=None):
     """K_R(omega) of Eq. 4.18 from the joint input-output responses, per axis.
 
     Parameters
@@ -62,12 +62,16 @@ def kr_frequency_response(lam_over_u, rotor_omega, lbar22):
     lbar22 : float
         Lbar22 (= Lbar33 in hover) [-], negative in our convention (Pitt-Peters
         ``-sqrt(C_T / 2)``).
+    weighted : flightid.MeasuredResponse, optional
+        The same responses with the magnitude-weighted coherence, reported beside
+        ``lam_over_u``'s in a column ``coherence_weighted``.
 
     Returns
     -------
     pandas.DataFrame
         Columns ``omega`` [rad/s], ``axis`` ("1s", "1c"), ``kr`` (complex),
-        ``coherence`` (the smaller of the two responses' coherences).
+        ``coherence`` (the smaller of the two responses' coherences), and
+        ``coherence_weighted`` when ``weighted`` is given.
 
     Raises
     ------
@@ -88,8 +92,12 @@ def kr_frequency_response(lam_over_u, rotor_omega, lbar22):
         with np.errstate(divide="ignore", invalid="ignore"):
             kr = -(rotor_omega * h_b) / (lbar22 * h_c)
         ok = np.isfinite(kr)
-        frames.append(pd.DataFrame({"omega": lam_over_u.omega[ok], "axis": axis, "kr": kr[ok],
-                                    "coherence": np.minimum(coh_c, coh_b)[ok]}))
+        frame = pd.DataFrame({"omega": lam_over_u.omega[ok], "axis": axis, "kr": kr[ok],
+                              "coherence": np.minimum(coh_c, coh_b)[ok]})
+        if weighted is not None:
+            frame["coherence_weighted"] = np.minimum(weighted.element(out, moment)[1],
+                                                     weighted.element(out, rate)[1])[ok]
+        frames.append(frame)
     return pd.concat(frames, ignore_index=True)
 
 
@@ -115,6 +123,10 @@ class WakeDistortionResult:
         Band of the constant fit [rad/s].
     coherence_min : float
         Points below this coherence get no weight.
+    coherence_kind : str
+        Which coherence ``table.coherence`` is (``"propagated"`` or ``"weighted"``,
+        see :func:`wake_distortion_from_runs`); the other is in its own column when
+        computed.
     rotor_omega : float
         Rotor speed [rad/s].
     ct : float
@@ -138,6 +150,7 @@ class WakeDistortionResult:
     wall_s: float = float("nan")
     low_frequency_points: int = 3
     notes: dict = field(default_factory=dict)
+    coherence_kind: str = "weighted"
 
     def _in_band(self, axis=None):
         t = self.table
@@ -238,12 +251,14 @@ class WakeDistortionResult:
         return out
 
     def to_pandas(self) -> pd.DataFrame:
-        """Long table: omega [rad/s], axis, kr_real, kr_imag, kr_magnitude, kr_phase_deg, coherence, in_band."""
+        """Long table: omega [rad/s], axis, kr_real, kr_imag, kr_magnitude, kr_phase_deg, coherence
+        (and the other coherence when computed), in_band."""
         t = self.table
         kr = t.kr.to_numpy()
         return pd.DataFrame({"omega": t.omega, "axis": t.axis, "kr_real": kr.real, "kr_imag": kr.imag,
                              "kr_magnitude": np.abs(kr), "kr_phase_deg": np.degrees(np.angle(kr)),
                              "coherence": t.coherence,
+                             **{c: t[c] for c in ("coherence_weighted", "coherence_propagated") if c in t},
                              "in_band": (t.omega >= self.fit_range[0]) & (t.omega <= self.fit_range[1])})
 
     def plot(self, fig=None):
@@ -256,7 +271,11 @@ class WakeDistortionResult:
             t = self.table[self.table.axis == axis]
             am.semilogx(t.omega, np.abs(t.kr), label=f"|K_R| {axis} axis (free wake)")
             ap.semilogx(t.omega, np.degrees(np.angle(t.kr)), label=axis)
-            ac.semilogx(t.omega, t.coherence, label=axis)
+            line, = ac.semilogx(t.omega, t.coherence, label=f"{axis} ({self.coherence_kind})")
+            for col in ("coherence_weighted", "coherence_propagated"):
+                if col in t:
+                    ac.semilogx(t.omega, t[col], ls="--", color=line.get_color(),
+                                label=f"{axis} ({col.split('_')[1]})")
         best = float(self.constants().set_index("axis").loc["both", "kr_constant"])
         if np.isfinite(best):
             am.axhline(best, color="k", ls="--", label=f"best constant {best:.2f}")
@@ -271,6 +290,7 @@ class WakeDistortionResult:
         ac.set_ylim(0, 1.05)
         ac.set_xlabel("omega [rad/s]")
         am.legend(fontsize=7)
+        ac.legend(fontsize=7)
         am.set_title(f"K_R(omega), hover, C_T = {self.ct:.4f}, Lbar22 = {self.lbar22:.4f} ({self.lbar_source})",
                      fontsize=9)
         return fig
@@ -302,7 +322,8 @@ def _check_fit_range(fit_range, coherence_min):
 
 
 def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_max=30.0, lbar="pitt_peters",
-                              fit_range=(1.0, 10.0), coherence_min=0.6, low_frequency_points=3):
+                              fit_range=(1.0, 10.0), coherence_min=0.6, low_frequency_points=3,
+                              coherence="propagated"):
     """K_R(omega) from time histories of the five §4.7 excitations (no wake needed).
 
     Parameters
@@ -329,6 +350,15 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
         Points below this coherence get no weight.
     low_frequency_points : int
         Lowest coherent frequencies averaged for the low-frequency value.
+    coherence : {"propagated", "weighted"}
+        Coherence of the joint input-output responses that K_R's coherence is the
+        smaller of (:func:`flightid.joint_input_output`). ``"propagated"`` (default)
+        carries the five-input inversion's error amplification and follows the
+        Monte Carlo scatter of the inverted responses; ``"weighted"``, the
+        magnitude-weighted combination of Eqs. 3.23-3.25, reads low wherever the
+        inverted terms nearly cancel, even when every single-input response is
+        coherent. The other one is reported beside it (``coherence_weighted`` or
+        ``coherence_propagated`` in :attr:`WakeDistortionResult.table`).
 
     Returns
     -------
@@ -337,7 +367,7 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
     Raises
     ------
     ValueError
-        Bad ``ct``, ``fit_range``, ``lbar``, or fewer than five excitations.
+        Bad ``ct``, ``fit_range``, ``lbar``, ``coherence``, or fewer than five excitations.
     """
     from flightid import combine_responses, frequency_response, joint_input_output
     fit_range = _check_fit_range(fit_range, coherence_min)
@@ -352,6 +382,8 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
         raise ValueError(f"no run for excitations {missing}")
     if isinstance(lbar, str) and lbar not in ("pitt_peters", "identified"):
         raise ValueError(f"lbar must be 'pitt_peters', 'identified' or a number, got {lbar!r}")
+    if coherence not in ("propagated", "weighted"):
+        raise ValueError(f"coherence must be 'propagated' or 'weighted', got {coherence!r}")
     if not isinstance(lbar, str) and not (isinstance(lbar, (int, float, np.floating)) and math.isfinite(lbar)
                                           and lbar < 0):
         raise ValueError(f"lbar must be 'pitt_peters', 'identified' or a negative Lbar22, got {lbar!r}")
@@ -367,7 +399,9 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
     # Eq. 4.11: the swashplate sweeps move no flap rate (flapping held): structural zeros
     zeros = np.zeros((len(_INPUTS), len(controls)), bool)
     zeros[3:, :3] = True
-    responses = joint_input_output(measured.select(_OUTPUTS), measured.select(_INPUTS), structural_zeros=zeros)
+    other = "weighted" if coherence == "propagated" else "propagated"
+    responses, beside = (joint_input_output(measured.select(_OUTPUTS), measured.select(_INPUTS),
+                                            structural_zeros=zeros, coherence=kind) for kind in (coherence, other))
     if isinstance(lbar, str):
         if lbar == "pitt_peters":
             lbar22 = -math.sqrt(ct / 2.0)
@@ -376,14 +410,17 @@ def wake_distortion_from_runs(runs, controls, rotor_omega, ct, *, w_min=0.7, w_m
         source = lbar
     else:
         lbar22, source = float(lbar), "given"
-    table = kr_frequency_response(responses, float(rotor_omega), lbar22)
+    table = kr_frequency_response(responses, float(rotor_omega), lbar22, weighted=beside)
+    if other == "propagated":
+        table = table.rename(columns={"coherence_weighted": "coherence_propagated"})
     return WakeDistortionResult(table=table, lbar22=lbar22, lbar_source=source, fit_range=fit_range,
                                 coherence_min=float(coherence_min), rotor_omega=float(rotor_omega), ct=float(ct),
-                                responses=responses, low_frequency_points=int(low_frequency_points))
+                                responses=responses, low_frequency_points=int(low_frequency_points),
+                                coherence_kind=coherence)
 
 
 def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_peters", fit_range=(1.0, 10.0),
-                             n_jobs=2, cache_dir="default", progress=True):
+                             n_jobs=2, cache_dir="default", progress=True, coherence="propagated"):
     """K_R(omega) of a single rotor in hover from the free wake (§4.7).
 
     Trims the wake in hover at ``ct``, runs one sweep of each of :data:`KR_CONTROLS`
@@ -405,6 +442,8 @@ def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_pet
         Band of the constant K_R [rad/s].
     n_jobs : int
         Wake worker processes.
+    coherence : {"propagated", "weighted"}
+        Coherence K_R is judged by (see :func:`wake_distortion_from_runs`).
     cache_dir : str or None
         Wake run cache (see :func:`aircraft.wake.run_sweeps`).
     progress : bool
@@ -439,7 +478,7 @@ def identify_wake_distortion(config, *, ct=0.0061, settings=None, lbar="pitt_pet
     runs = {sp.control: out[sp.name] for sp in specs}
     res = wake_distortion_from_runs(runs, list(KR_CONTROLS), float(config.rotors[0].omega), trim.outputs["CT"],
                                     w_min=s.w_min, w_max=s.w_max, lbar=lbar, fit_range=fit_range,
-                                    coherence_min=s.coherence_min)
+                                    coherence_min=s.coherence_min, coherence=coherence)
     res.trim = trim
     res.wall_s = time.perf_counter() - t0
     return res
