@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from .forward_flight import identify_forward_flight, pitt_peters_forward
+from .structures.forward import FORWARD_FIT_PAIRS
 
 __all__ = ["identify_over_advance_ratio", "AdvanceRatioSweep", "ADVANCE_RATIO_COEFFICIENTS"]
 
@@ -144,7 +145,7 @@ class AdvanceRatioSweep:
 
 
 def identify_over_advance_ratio(config, mus, *, alpha=0.0, ct=0.0061, settings=None, pattern="eq4_3",
-                                n_jobs=2, cache_dir="default", progress=True):
+                                n_jobs=2, cache_dir="default", progress=True, start="pitt_peters", pairs=FORWARD_FIT_PAIRS):
     """Identify the single-rotor 3-state inflow model at each advance ratio of ``mus``.
 
     ``mu = 0`` is identified with the hover 3-state structure (diagonal, cyclic
@@ -171,6 +172,8 @@ def identify_over_advance_ratio(config, mus, *, alpha=0.0, ct=0.0061, settings=N
     cache_dir : str or None
         Wake run cache (see :func:`aircraft.wake.run_sweeps`).
     progress : bool
+    start, pairs
+        Forward-flight start and fitted responses (:func:`identify_forward_flight`).
 
     Returns
     -------
@@ -217,5 +220,5 @@ def identify_over_advance_ratio(config, mus, *, alpha=0.0, ct=0.0061, settings=N
         else:
             models[mu] = identify_forward_flight(config, mu, alpha=alpha, ct=ct, pattern=pattern,
                                                  settings=settings, n_jobs=n_jobs, cache_dir=cache_dir,
-                                                 progress=progress)
+                                                 progress=progress, start=start, pairs=pairs)
     return AdvanceRatioSweep(models, alpha=float(alpha), omega=float(config.rotors[0].omega))

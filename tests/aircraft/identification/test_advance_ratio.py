@@ -20,6 +20,7 @@ import aircraft.wake as wake_pkg
 from aircraft.configs import uh60_single_rotor
 from aircraft.identification import IdentificationSettings
 from aircraft.identification.advance_ratio import AdvanceRatioSweep, identify_over_advance_ratio
+from aircraft.identification.structures.forward import KEY_RESPONSES
 from aircraft.identification.testing import mixing_matrix, simulate_mltau
 from aircraft.inflow.published import UH60_HOVER_MFW, UH60_MU02_MFW
 from aircraft.wake import WakeSettings
@@ -73,8 +74,9 @@ def fake_wake(monkeypatch):
 
 
 def test_known_hover_and_forward_flight_models_are_recovered(fake_wake):
+    # the truth is of the structure's form, so all five key responses (lam0/CM included) apply
     sweep = identify_over_advance_ratio(uh60_single_rotor(), [0.2, 0.0], settings=SETTINGS, n_jobs=1,
-                                        progress=False)
+                                        progress=False, pairs=KEY_RESPONSES)
     assert isinstance(sweep, AdvanceRatioSweep) and sweep.mus == [0.0, 0.2]
     for mu, truth in ((0.0, HOVER), (0.2, FORWARD)):
         mats = sweep.models[mu].fit.structure.matrices()
@@ -112,3 +114,29 @@ def test_bad_advance_ratios_are_refused():
         identify_over_advance_ratio(cfg, [0.1, 0.1])
     with pytest.raises(ValueError, match=">= 0"):
         identify_over_advance_ratio(cfg, [True])
+
+
+def test_forward_structure_start_and_pairs_options():
+    from aircraft.identification import pitt_peters_forward
+    from aircraft.identification.structures.forward import (FORWARD_FIT_PAIRS, SingleRotorForward,
+                                                            pitt_peters_start)
+    plain = SingleRotorForward()
+    # without the options the structure (and so every settings hash) is what it was
+    assert plain.spec() == {"key": "single_rotor_forward", "frame": "rotor", "form": plain.form,
+                            "protected": ["m11", "m22"], "pattern": "eq4_3"}
+    assert plain.fit_options == {} and plain.extra_starts(None, 27.0) == []
+    M, L = pitt_peters_forward(0.0061, 0.2)
+    start = pitt_peters_start(M, L)
+    # the start is the Pitt-Peters matrices entry by entry (couplings included)
+    assert start["l13"] == L[0, 2] and start["l31"] == L[2, 0] and start["m22"] == M[1, 1]
+    s = SingleRotorForward(start=start, pairs=FORWARD_FIT_PAIRS)
+    assert s.fit_options == {"pairs": list(FORWARD_FIT_PAIRS)} and ("lam0", "CM") not in s.pairs
+    assert s.extra_starts(None, 27.0) == [("given start", start)]
+    assert s.spec()["pairs"] == [list(p) for p in FORWARD_FIT_PAIRS] and "start" in s.spec()
+    with pytest.raises(ValueError, match="start lacks"):
+        SingleRotorForward(start={"m11": 1.0})
+    with pytest.raises(ValueError, match="pairs must be"):
+        SingleRotorForward(pairs=[("lam0", "CQ")])
+    with pytest.raises(ValueError, match="3 x 3"):
+        pitt_peters_start(np.eye(2), L)
+
