@@ -37,8 +37,7 @@ import numpy as np
 import pandas as pd
 
 from aircraft.configs import uh60_single_rotor
-from aircraft.identification import IdentificationSettings, identify_wake_distortion
-from aircraft.identification.advance_ratio import identify_over_advance_ratio
+from aircraft.identification import IdentificationSettings, identify_over_advance_ratio, identify_wake_distortion
 from studies.analysis.forward_flight import forward_bode_overlay, forward_comparison_table
 from aircraft.wake import WakeSettings
 
