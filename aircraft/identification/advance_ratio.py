@@ -164,7 +164,10 @@ def identify_over_advance_ratio(config, mus, *, alpha=0.0, ct=0.0061, settings=N
         Shaft angle of attack [rad] (positive tilts the disk back).
     ct : float
         Trim thrust coefficient [-].
-    settings : IdentificationSettings, optional
+    settings : IdentificationSettings or dict, optional
+        One for every mu, or ``{mu: IdentificationSettings}`` (a mu it lacks gets the
+        defaults): e.g. a larger sweep amplitude where the wake's own unsteadiness is
+        as large as the response.
     pattern : {"eq4_3", "full"}
         Forward-flight structure pattern (:class:`SingleRotorForward`).
     n_jobs : int
@@ -182,8 +185,8 @@ def identify_over_advance_ratio(config, mus, *, alpha=0.0, ct=0.0061, settings=N
     Raises
     ------
     ValueError
-        Empty ``mus``, a negative, non-finite or repeated advance ratio, or a
-        configuration with more than one rotor.
+        Empty ``mus``, a negative, non-finite or repeated advance ratio, settings for
+        an advance ratio not in ``mus``, or a configuration with more than one rotor.
     PipelineError
         A wake trim fails.
 
@@ -211,14 +214,18 @@ def identify_over_advance_ratio(config, mus, *, alpha=0.0, ct=0.0061, settings=N
         raise ValueError(f"mus must not repeat an advance ratio, got {mus!r}")
     if len(config.rotors) != 1:
         raise ValueError(f"identify_over_advance_ratio is for a single rotor, got {len(config.rotors)} rotors")
+    per_mu = {float(k): v for k, v in settings.items()} if isinstance(settings, dict) else None
+    if per_mu is not None and set(per_mu) - {float(m) for m in mus}:
+        raise ValueError(f"settings names advance ratios not in mus: {sorted(set(per_mu) - set(map(float, mus)))}")
     models = {}
     for mu in sorted(float(m) for m in mus):
+        settings_mu = per_mu.get(mu) if per_mu is not None else settings
         if mu == 0.0:
             models[mu] = identify_inflow(config, flight_condition(config, 0.0, alpha), SingleRotor3State(),
-                                         ct=float(ct), settings=settings, name="single rotor mu = 0 (hover)",
+                                         ct=float(ct), settings=settings_mu, name="single rotor mu = 0 (hover)",
                                          n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
         else:
             models[mu] = identify_forward_flight(config, mu, alpha=alpha, ct=ct, pattern=pattern,
-                                                 settings=settings, n_jobs=n_jobs, cache_dir=cache_dir,
+                                                 settings=settings_mu, n_jobs=n_jobs, cache_dir=cache_dir,
                                                  progress=progress, start=start, pairs=pairs)
     return AdvanceRatioSweep(models, alpha=float(alpha), omega=float(config.rotors[0].omega))

@@ -75,8 +75,8 @@ def fake_wake(monkeypatch):
 
 def test_known_hover_and_forward_flight_models_are_recovered(fake_wake):
     # the truth is of the structure's form, so all five key responses (lam0/CM included) apply
-    sweep = identify_over_advance_ratio(uh60_single_rotor(), [0.2, 0.0], settings=SETTINGS, n_jobs=1,
-                                        progress=False, pairs=KEY_RESPONSES)
+    sweep = identify_over_advance_ratio(uh60_single_rotor(), [0.2, 0.0], settings={0.0: SETTINGS, 0.2: SETTINGS},
+                                        n_jobs=1, progress=False, pairs=KEY_RESPONSES)
     assert isinstance(sweep, AdvanceRatioSweep) and sweep.mus == [0.0, 0.2]
     for mu, truth in ((0.0, HOVER), (0.2, FORWARD)):
         mats = sweep.models[mu].fit.structure.matrices()
@@ -114,6 +114,8 @@ def test_bad_advance_ratios_are_refused():
         identify_over_advance_ratio(cfg, [0.1, 0.1])
     with pytest.raises(ValueError, match=">= 0"):
         identify_over_advance_ratio(cfg, [True])
+    with pytest.raises(ValueError, match="not in mus"):
+        identify_over_advance_ratio(cfg, [0.1], settings={0.2: SETTINGS})
 
 
 def test_forward_structure_start_and_pairs_options():
