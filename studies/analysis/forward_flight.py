@@ -126,7 +126,9 @@ def forward_comparison_table(models, *, alpha=0.0):
             rows.append({"mu": mu, "coefficient": label, "ours": ours,
                          "cramer_rao_pct": cr, "insensitivity_pct": ins, "status": status,
                          "pitt_peters": float(pp), "dissertation": float(ref),
-                         "sign_note": sign_note(label, ours, float(pp))})
+                         "sign_note": (SIGN_REASONS.get(label.split(" ")[0].split("/")[0], "") + "; not in this structure"
+                                       if status == "not in model" and not label.startswith("tau")
+                                       else sign_note(label, ours, float(pp)))})
     return pd.DataFrame(rows)
 
 
