@@ -21,7 +21,7 @@ __all__ = ["identify_forward_flight", "pitt_peters_forward"]
 
 def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3", settings=None,
                             name=None, n_jobs=2, cache_dir="default", progress=True, start="pitt_peters",
-                            pairs=FORWARD_FIT_PAIRS):
+                            pairs=FORWARD_FIT_PAIRS, reproduce=False):
     """Identify the forward-flight model of one rotor at advance ratio ``mu`` from the free wake.
 
     The wake is trimmed in the wind tunnel to ``ct`` and zero hub moments (shaft
@@ -61,6 +61,9 @@ def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3"
     pairs : sequence of (output, input) or None
         Responses fitted; None: every coherent response the structure can produce
         at the start (with a zero-coupling start, only the on-axis ones).
+    reproduce : bool or "if_trusted"
+        Also identify on a second, round-off-different wake data set (see
+        :func:`identify_inflow`); part of the trust verdict.
 
     Returns
     -------
@@ -88,7 +91,7 @@ def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3"
     structure = SingleRotorForward(pattern=pattern, start=given, pairs=pairs)
     return identify_inflow(config, condition, structure, trim={"ct": float(ct)}, settings=settings,
                            name=name or f"single rotor mu = {mu:g} ({structure.key}, {pattern})", n_jobs=n_jobs,
-                           cache_dir=cache_dir, progress=progress)
+                           cache_dir=cache_dir, progress=progress, reproduce=reproduce)
 
 
 def pitt_peters_forward(ct, mu, alpha=0.0, omega=27.0):
