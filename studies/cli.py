@@ -136,8 +136,8 @@ STUDIES = {s.command: s for s in (
           "identified / Dynamic-Climb / Pitt-Peters inflow (§7.2.2)", 10.0,
           default_out="results/rotor_truth_check", cached_note="wake runs cached under .cache/wake"),
     Study("forward-flight-identification", "studies.forward_flight_identification",
-          "single rotor at mu = 0.1/0.2 (Eqs. 4.7-4.8 structure) vs Pitt-Peters, and K_R(omega) in hover "
-          "(§4.4, §4.7)", 20.0, default_out="results/forward_flight_identification",
+          "single rotor over mu = 0-0.3 (Eqs. 4.7-4.8 structure) vs Pitt-Peters, and K_R(omega) in hover "
+          "(§4.4, Figs. 4.34-4.36, §4.7)", 20.0, default_out="results/forward_flight_identification",
           cached_note="wake runs cached under .cache/wake",
           variants={"--wake=coarse": (4.0, ("{out}",), "wake runs cached under .cache/wake"),
                     "--no-cache": (13.0, ("{out}",), "the wake runs recomputed, so its wall times are the data sets'")}),

@@ -8,6 +8,7 @@
     structures/          the inflow structures and their one registry (STRUCTURES, get_structure)
     conditions.py        flight_condition: the wind-tunnel condition of an advance ratio or a speed
     forward_flight.py    identify_forward_flight (single rotor), pitt_peters_forward
+    advance_ratio.py     identify_over_advance_ratio: the 3-state M, Lbar over mu beside Pitt-Peters
     coaxial_forward_flight.py  identify_coaxial_forward (the coaxial at 200 kt, bounded reduction)
     off_rotor/           off-rotor induced-velocity models (tail, wing): identify_off_rotor
     wake_distortion.py   K_R(omega) from tip-path-plane sweeps: identify_wake_distortion
@@ -37,6 +38,7 @@ from .conditions import flight_condition
 from .pipeline import IdentificationSettings, IdentifiedModel, PipelineError, identification_hash, identify_inflow
 from .multisine import MultisineSettings, identify_inflow_multisine
 from .forward_flight import identify_forward_flight, pitt_peters_forward
+from .advance_ratio import AdvanceRatioSweep, identify_over_advance_ratio
 from .coaxial_forward_flight import identify_coaxial_forward
 from .off_rotor import OffRotorSettings, OffRotorSurface, identify_off_rotor
 from .wake_distortion import identify_wake_distortion
@@ -49,6 +51,7 @@ from .wake_sensitivity import wake_setting_sensitivity
 __all__ = ["identify_inflow", "IdentificationSettings", "IdentifiedModel", "PipelineError", "identification_hash",
            "identify_inflow_multisine", "MultisineSettings", "STRUCTURES", "InflowStructure", "get_structure",
            "register_structure", "flight_condition", "identify_forward_flight", "pitt_peters_forward",
+           "identify_over_advance_ratio", "AdvanceRatioSweep",
            "identify_coaxial_forward", "identify_off_rotor", "OffRotorSettings", "OffRotorSurface",
            "identify_wake_distortion", "identify_design_space", "DesignSpaceResult", "trust_check",
            "TrustCheck", "quasi_steady_check", "wake_steady_gains", "wake_setting_sensitivity"]

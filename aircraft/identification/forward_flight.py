@@ -14,13 +14,14 @@ import math
 import numpy as np
 
 from .conditions import flight_condition
-from .structures.forward import SingleRotorForward
+from .structures.forward import FORWARD_FIT_PAIRS, SingleRotorForward, pitt_peters_start
 
 __all__ = ["identify_forward_flight", "pitt_peters_forward"]
 
 
 def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3", settings=None,
-                            name=None, n_jobs=2, cache_dir="default", progress=True):
+                            name=None, n_jobs=2, cache_dir="default", progress=True, start="pitt_peters",
+                            pairs=FORWARD_FIT_PAIRS, reproduce=False):
     """Identify the forward-flight model of one rotor at advance ratio ``mu`` from the free wake.
 
     The wake is trimmed in the wind tunnel to ``ct`` and zero hub moments (shaft
@@ -28,6 +29,13 @@ def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3"
     :class:`SingleRotorForward`: one sweep per swashplate control, joint
     input-output lambda/C, fit, automatic reduction (M diagonal protected), doublet
     verification beside the noise floor.
+
+    Beside the data-driven starts the fit starts from the linearised Pitt-Peters at
+    the condition (``start="pitt_peters"``), whose nonzero ``Lbar13``, ``Lbar31``
+    bring the coupling responses into the cost; the lowest cost wins. The fitted
+    responses are ``pairs``: by default :data:`FORWARD_FIT_PAIRS`, the key responses
+    without ``lam0/CM``, whose quasi-steady gain in the wake can have a sign no
+    stable model of this structure reaches.
 
     Parameters
     ----------
@@ -48,6 +56,14 @@ def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3"
     cache_dir : str or None
         Wake run cache (see :func:`aircraft.wake.run_sweeps`).
     progress : bool
+    start : {"pitt_peters", None}
+        Add the linearised Pitt-Peters start (at ``ct``), or only the data-driven ones.
+    pairs : sequence of (output, input) or None
+        Responses fitted; None: every coherent response the structure can produce
+        at the start (with a zero-coupling start, only the on-axis ones).
+    reproduce : bool or "if_trusted"
+        Also identify on a second, round-off-different wake data set (see
+        :func:`identify_inflow`); part of the trust verdict.
 
     Returns
     -------
@@ -56,7 +72,8 @@ def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3"
     Raises
     ------
     ValueError
-        Bad ``mu``, ``alpha`` or ``pattern``, or a configuration with more than one rotor.
+        Bad ``mu``, ``alpha``, ``pattern``, ``start`` or ``pairs``, or a configuration
+        with more than one rotor.
     PipelineError
         The wake trim fails.
     """
@@ -65,11 +82,16 @@ def identify_forward_flight(config, mu, *, alpha=0.0, ct=0.0061, pattern="eq4_3"
         raise ValueError(f"identify_forward_flight is for a single rotor, got {len(config.rotors)} rotors")
     if isinstance(mu, bool) or not isinstance(mu, (int, float, np.integer, np.floating)) or not mu > 0:
         raise ValueError(f"forward flight needs an advance ratio mu > 0, got {mu!r} (hover: identify_inflow)")
+    if start not in ("pitt_peters", None):
+        raise ValueError(f"start must be 'pitt_peters' or None, got {start!r}")
     condition = flight_condition(config, mu, alpha)
-    structure = SingleRotorForward(pattern=pattern)
+    given = None
+    if start == "pitt_peters":
+        given = pitt_peters_start(*pitt_peters_forward(ct, mu, alpha, float(config.rotors[0].omega)), pattern=pattern)
+    structure = SingleRotorForward(pattern=pattern, start=given, pairs=pairs)
     return identify_inflow(config, condition, structure, trim={"ct": float(ct)}, settings=settings,
                            name=name or f"single rotor mu = {mu:g} ({structure.key}, {pattern})", n_jobs=n_jobs,
-                           cache_dir=cache_dir, progress=progress)
+                           cache_dir=cache_dir, progress=progress, reproduce=reproduce)
 
 
 def pitt_peters_forward(ct, mu, alpha=0.0, omega=27.0):

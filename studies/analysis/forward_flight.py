@@ -16,7 +16,53 @@ import pandas as pd
 from aircraft.identification.forward_flight import pitt_peters_forward
 from aircraft.identification.structures.forward import KEY_RESPONSES
 
-__all__ = ["forward_comparison_table", "forward_bode_overlay"]
+__all__ = ["forward_comparison_table", "forward_bode_overlay", "sign_note", "SIGN_REASONS"]
+
+#: Why each entry has the sign it has (our frames: :mod:`aircraft.inflow.base`,
+#: :mod:`aircraft.inflow.pitt_peters`).
+SIGN_REASONS = {
+    "M11": "+: apparent mass of the uniform inflow (8/(3 pi) in Pitt-Peters)",
+    "M22": "-: the moment rows carry the Eq. 2.11 moment signs (Pitt-Peters rows 2-3 times -1)",
+    "M33": "-: tied to M22 (Pitt-Peters keeps the cyclic apparent masses equal)",
+    "Lbar11": "+: more thrust, more mean inflow (momentum theory: dC_T/dlam0 > 0)",
+    "Lbar22": "-: a positive C_L gives a negative lam1s in the Eq. 2.11 moment-sign convention",
+    "Lbar33": "-: a positive C_M gives a negative lam1c in the Eq. 2.11 moment-sign convention",
+    "Lbar13": "+: wake skew (Pitt-Peters X = 15 pi/64 tan(chi/2) > 0); 0 in hover",
+    "Lbar31": "+: wake skew: thrust raises the inflow at the rear of the disk (lam1c > 0); 0 in hover",
+    "tau": "delay >= 0 by construction",
+}
+
+
+def sign_note(coefficient, ours, pitt_peters):
+    """One line on the sign of an identified entry: the physical reason and whether it
+    agrees with Pitt-Peters.
+
+    Parameters
+    ----------
+    coefficient : str
+        Row label of :func:`forward_comparison_table` (e.g. ``"Lbar13"``, ``"M22/Omega [s]"``).
+    ours, pitt_peters : float
+        Identified and Pitt-Peters values.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> sign_note("Lbar11", 0.2, 0.16)
+    '+: more thrust, more mean inflow (momentum theory: dC_T/dlam0 > 0); same sign as Pitt-Peters'
+    """
+    key = coefficient.split("/")[0].split(" ")[0]
+    reason = SIGN_REASONS.get("tau" if key.startswith("tau") else key, "")
+    if key.startswith("tau"):
+        return reason
+    if not np.isfinite(ours) or ours == 0:
+        return f"{reason}; not identified (zero)"
+    if pitt_peters == 0:
+        return f"{reason}; Pitt-Peters has none here"
+    agree = np.sign(ours) == np.sign(pitt_peters)
+    return f"{reason}; {'same sign as' if agree else 'OPPOSITE sign to'} Pitt-Peters"
 
 
 def _published_for(mu):
@@ -45,9 +91,10 @@ def forward_comparison_table(models, *, alpha=0.0):
     pandas.DataFrame
         One row per (mu, coefficient): ``ours``, ``cramer_rao_pct``,
         ``insensitivity_pct``, ``status`` (free / removed by the reduction / tied),
-        ``pitt_peters`` (at the wake's trimmed C_T) and ``dissertation`` (printed
+        ``pitt_peters`` (at the wake's trimmed C_T), ``dissertation`` (printed
         Eq. 4.7 for mu = 0.1, Eq. 4.8 for mu = 0.2, else NaN; reference data, never an
-        output). ``M`` rows are ``M/Omega`` [s], delays [s].
+        output) and ``sign_note`` (:func:`sign_note`). ``M`` rows are ``M/Omega`` [s],
+        delays [s].
 
     Raises
     ------
@@ -75,9 +122,13 @@ def forward_comparison_table(models, *, alpha=0.0):
             ref = np.nan
             if pub is not None:
                 ref = {"M": pub.M_seconds, "Lbar": pub.Lbar, "tau": pub.tau}[mat][i, j]
-            rows.append({"mu": mu, "coefficient": label, "ours": float(mats[mat][i, j]) * scale,
+            ours = float(mats[mat][i, j]) * scale
+            rows.append({"mu": mu, "coefficient": label, "ours": ours,
                          "cramer_rao_pct": cr, "insensitivity_pct": ins, "status": status,
-                         "pitt_peters": float(pp), "dissertation": float(ref)})
+                         "pitt_peters": float(pp), "dissertation": float(ref),
+                         "sign_note": (SIGN_REASONS.get(label.split(" ")[0].split("/")[0], "") + "; not in this structure"
+                                       if status == "not in model" and not label.startswith("tau")
+                                       else sign_note(label, ours, float(pp)))})
     return pd.DataFrame(rows)
 
 

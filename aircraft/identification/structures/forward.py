@@ -6,15 +6,23 @@ delays are in seconds. A single rotor has one frame, so ``frame`` has no effect.
 from __future__ import annotations
 
 
+import numpy as np
+
 from .base import PITT_PETERS_M11, PITT_PETERS_M22, InflowStructure, _low_frequency_inverse
 
-__all__ = ["SingleRotorForward", "FORWARD_PATTERNS", "KEY_RESPONSES"]
+__all__ = ["SingleRotorForward", "FORWARD_PATTERNS", "KEY_RESPONSES", "FORWARD_FIT_PAIRS", "pitt_peters_start"]
 
 #: Patterns of :class:`SingleRotorForward`.
 FORWARD_PATTERNS = ("eq4_3", "full")
 
 #: The responses §4.4 shows (Figs. 4.12-4.21): (output, input).
 KEY_RESPONSES = (("lam0", "CT"), ("lam1s", "CL"), ("lam1c", "CM"), ("lam1c", "CT"), ("lam0", "CM"))
+
+#: The key responses without ``lam0/CM``: the wake's quasi-steady ``lam0/CM`` can have the
+#: sign that, with the other three longitudinal gains, no stable Eq. 4.3 model reaches
+#: (``det`` of the 2 x 2 gain block must be < 0 when ``M11 > 0 > M33``); §4.4.1.2 notes the
+#: response "can likely be removed from the optimization".
+FORWARD_FIT_PAIRS = KEY_RESPONSES[:4]
 
 #: Entries (1-based) of Eq. 4.3's Lbar and tau (M is diagonal with M22 = M33).
 _EQ43_ENTRIES = ((1, 1), (1, 3), (2, 2), (3, 1), (3, 3))
@@ -36,21 +44,65 @@ class SingleRotorForward(InflowStructure):
         Frame of the parameters (no effect for a single rotor).
     pattern : {"eq4_3", "full"}
         Free entries (see above).
+    start : dict, optional
+        A further start beside the data-driven ones (e.g. the linearised
+        Pitt-Peters at the flight condition, :func:`pitt_peters_start`): the
+        pipeline fits every start and keeps the lowest cost. Its nonzero couplings
+        put the coupling responses in the cost from the first iteration (a start
+        with ``Lbar13 = Lbar31 = 0`` makes them structurally zero, and a default
+        fit then leaves them out).
+    pairs : sequence of (output, input), optional
+        The responses fitted (default: every coherent response the structure can
+        produce). :data:`FORWARD_FIT_PAIRS` leaves out ``lam0/CM``.
 
     Raises
     ------
     ValueError
-        Unknown ``pattern`` or ``frame``.
+        Unknown ``pattern`` or ``frame``, a ``start`` without every parameter, a
+        pair outside the structure's outputs and inputs.
     """
 
     key = "single_rotor_forward"
     rotors = ("",)
 
-    def __init__(self, frame="rotor", pattern="eq4_3"):
+    def __init__(self, frame="rotor", pattern="eq4_3", start=None, pairs=None):
         super().__init__(frame)
         if pattern not in FORWARD_PATTERNS:
             raise ValueError(f"pattern must be one of {FORWARD_PATTERNS}, got {pattern!r}")
         self.pattern = pattern
+        self.start = None
+        if start is not None:
+            missing = set(self.parameter_names()) - set(dict(start))
+            if missing:
+                raise ValueError(f"start lacks parameters {sorted(missing)}")
+            self.start = {n: float(dict(start)[n]) for n in self.parameter_names()}
+        self.pairs = None
+        if pairs is not None:
+            pairs = [tuple(p) for p in pairs]
+            bad = [p for p in pairs if len(p) != 2 or p[0] not in self.outputs or p[1] not in self.inputs]
+            if bad or not pairs:
+                raise ValueError(f"pairs must be (output, input) of {self.outputs} x {self.inputs}, got {pairs!r}")
+            self.pairs = pairs
+
+    @property
+    def fit_options(self):
+        """``pairs`` for the fit and the reduction when given (else none)."""
+        return {} if self.pairs is None else {"pairs": list(self.pairs)}
+
+    def extra_starts(self, lam_over_c, omega):
+        """The given ``start`` (e.g. linearised Pitt-Peters), when there is one.
+
+        Parameters
+        ----------
+        lam_over_c : flightid.MeasuredResponse
+        omega : float
+            Rotor speed [rad/s].
+
+        Returns
+        -------
+        list of (str, dict)
+        """
+        return [] if self.start is None else [("given start", dict(self.start))]
 
     @property
     def protected(self):
@@ -58,10 +110,18 @@ class SingleRotorForward(InflowStructure):
         return ("m11", "m22") if self.pattern == "eq4_3" else ("m11", "m22", "m33")
 
     def spec(self):
-        return {**super().spec(), "pattern": self.pattern}
+        out = {**super().spec(), "pattern": self.pattern}
+        # added only when set: the hash of a default structure is what it was before they existed
+        if self.start is not None:
+            out["start"] = {k: round(v, 12) for k, v in sorted(self.start.items())}
+        if self.pairs is not None:
+            out["pairs"] = [list(p) for p in self.pairs]
+        return out
 
     def __repr__(self):
-        return f"SingleRotorForward(frame={self.frame!r}, pattern={self.pattern!r})"
+        extra = "" if self.pairs is None else f", pairs={self.pairs!r}"
+        extra += "" if self.start is None else ", start={...}"
+        return f"SingleRotorForward(frame={self.frame!r}, pattern={self.pattern!r}{extra})"
 
     def _patterns(self):
         if self.pattern == "full":
@@ -161,3 +221,37 @@ class SingleRotorForward(InflowStructure):
         m = model.M * model.omega if model.time == "seconds" else model.M
         mats = {"m": m, "l": model.Lbar, "t": model.tau}
         return {n: float(mats[n[0]][int(n[1]) - 1, int(n[2]) - 1]) for n in self.parameter_names()}
+
+
+def pitt_peters_start(M, Lbar, pattern="eq4_3"):
+    """Start values of :class:`SingleRotorForward` from an ``M`` (per d/dpsi) and ``Lbar``.
+
+    Delays start at 20 ms on the diagonal and 50 ms off it (as the data-driven start).
+
+    Parameters
+    ----------
+    M, Lbar : (3, 3) array_like
+        Apparent mass (azimuth time) and Lbar, e.g. :func:`pitt_peters_forward`.
+    pattern : {"eq4_3", "full"}
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> v = pitt_peters_start(np.diag([0.85, -0.11, -0.11]), np.array([[0.12, 0, 0.23], [0, -0.05, 0], [0.21, 0, -0.17]]))
+    >>> v["l13"], v["m22"], v["t13"]
+    (0.23, -0.11, 0.05)
+    """
+    M = np.asarray(M, float)
+    Lbar = np.asarray(Lbar, float)
+    if M.shape != (3, 3) or Lbar.shape != (3, 3):
+        raise ValueError(f"M and Lbar must be 3 x 3, got {M.shape} and {Lbar.shape}")
+    mats = {"m": M, "l": Lbar}
+    out = {}
+    for name in SingleRotorForward(pattern=pattern).parameter_names():
+        p, i, j = name[0], int(name[1]) - 1, int(name[2]) - 1
+        out[name] = float(mats[p][i, j]) if p in mats else (0.02 if i == j else 0.05)
+    return out
