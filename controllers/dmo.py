@@ -56,6 +56,7 @@ from tqdm.auto import tqdm
 from .dmo_settings import DMOSettings, InfeasibleDesignError, SolverError, VerificationError
 from .emf import EMFDesign, PIDGains
 from .gain_sampling import extend_along_ray, sample_gains
+from .multistart import multistart
 from .nlp import _Problem, _gain_scale
 from .optimization import _verify_all, optimize
 from .scoring import OptimizationResult, _as_designs, _scored, design_margins
@@ -84,6 +85,9 @@ class DMOResult:
     samples: pd.DataFrame | None = None
     #: global stage: the best samples pushed along their gain ratios
     candidates: pd.DataFrame | None = None
+    #: multistart stage: every start scored and the polished ones (None without one)
+    starts: pd.DataFrame | None = None
+    polished: pd.DataFrame | None = None
     #: which path gave the answer ("starting gains" or "global candidate", ...)
     origin: str = ""
     #: True when no global stage ran: the answer is only local
@@ -241,6 +245,15 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
     if settings.global_samples:
         bar.set_postfix(stage="global sample")
         samples, candidates, extended = _global_candidates(designs, specs0, settings, crossover_start)
+    starts = polished = None
+    if settings.multistart:
+        bar.set_postfix(stage="multistart")
+        starts, polished_c, polished = multistart(
+            designs, specs0, crossover_start, n_starts=settings.multistart, n_polish=settings.multistart_polish,
+            decades=settings.multistart_decades, seed=settings.seed,
+            polish_evaluations=settings.multistart_evaluations, extra_starts=[designs[0].gains])
+        # the NLP continuation starts from the best of both stages
+        candidates = sorted(candidates + polished_c, key=lambda c: -c[1])
 
     def attempt(path, stage, t_c, t_d, x0):
         wc, wd = crossover_start * t_c, drb_start * t_d
@@ -328,9 +341,9 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
                f"feasible, {crossover_start * hi:.4g} not; limiting spec(s): {', '.join(limiting)}; "
                f"most limiting at the design: {best.limiting_spec} (margin {best.min_margin:.3g})")
     msg += f"; from the {origin}"
-    if not settings.global_samples:
+    if not (settings.global_samples or settings.multistart):
         msg += "; local answer only (no global stage)"
     return DMOResult(best.design, best.designs, best.specs, history, limiting, time.perf_counter() - t0, msg,
-                     settings.tolerance, samples=samples, candidates=extended, origin=origin,
-                     local_only=not settings.global_samples, crossover_boundary=best.crossover_min,
+                     settings.tolerance, samples=samples, candidates=extended, starts=starts, polished=polished,
+                     origin=origin, local_only=not (settings.global_samples or settings.multistart), crossover_boundary=best.crossover_min,
                      drb_boundary=best.drb_min, crossover_spec=roles[0])
