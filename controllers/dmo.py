@@ -56,7 +56,7 @@ from tqdm.auto import tqdm
 from .dmo_settings import DMOSettings, InfeasibleDesignError, SolverError, VerificationError
 from .emf import EMFDesign, PIDGains
 from .gain_sampling import extend_along_ray, sample_gains
-from .multistart import multistart
+from .multistart import multistart, ratio_polish
 from .nlp import _Problem, _gain_scale
 from .optimization import _verify_all, optimize
 from .scoring import OptimizationResult, _as_designs, _scored, design_margins
@@ -179,7 +179,12 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
     with DRB held. (3) The winner's gains are pushed along their ratios once more under
     its final boundaries. The design with the highest crossover wins. With
     ``global_samples = 0`` only the local stage runs and the result says so
-    (``local_only``).
+    (``local_only``). With ``settings.multistart`` > 0 (off by default) a multistart
+    stage (:func:`controllers.multistart.multistart`: seeded starts over every gain's
+    log range and the starting gains, each polished on the true specs) adds its best
+    design to the candidates of stage (2), and a last stage follows the winner's gain
+    ratios along the binding spec boundary (:func:`controllers.multistart.ratio_polish`),
+    the crossover boundary then raised to what it reaches.
 
     Parameters
     ----------
@@ -326,11 +331,25 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
     g_ext, _, _ = extend_along_ray(best.designs, final_specs, best.design.gains, settings.tolerance)
     if g_ext is not best.design.gains:
         best = _scored(designs, final_specs, g_ext, best.crossover_min, best.drb_min, labels)
+    polished_final = False
+    if settings.multistart:
+        # stage 4 (multistart only): a compass search over the winner's gain ratios on the true
+        # specs, each ratio pushed to the feasible edge: it follows a spec boundary that runs
+        # obliquely across the gains, where the NLP's back-off and a search over the gains stall
+        g_pol, wc_pol, _ = ratio_polish(designs, final_specs, best.design.gains, tolerance=settings.tolerance,
+                                        max_evaluations=3 * settings.multistart_evaluations)
+        wc_now = _value(best.specs, roles[0])
+        if np.isfinite(wc_pol) and wc_pol > wc_now * (1 + settings.tolerance):
+            boundary = wc_pol * (1 - settings.tolerance / 2)
+            cand = _scored(designs, specs_factory(boundary, best.drb_min), g_pol, boundary, best.drb_min, labels)
+            if cand.feasible:
+                best, polished_final = cand, True
     bar.close()
     _verify_all(best.designs, settings)
     history = pd.DataFrame(rows)
     hi, upper = win["hi"], win["upper"]
     origin = win["path"] + (", pushed along its gain ratios" if g_ext is not win["best"].design.gains else "")
+    origin += ", polished on the true specs" if polished_final else ""
     if hi is None:
         limiting = []
         msg = (f"DMO stopped at the step limit ({settings.max_steps} expanding steps): crossover boundary "
