@@ -338,6 +338,13 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
         # obliquely across the gains, where the NLP's back-off and a search over the gains stall
         g_pol, wc_pol, _ = ratio_polish(designs, final_specs, best.design.gains, tolerance=settings.tolerance,
                                         max_evaluations=3 * settings.multistart_evaluations)
+        # the best other candidates too, at the final boundaries: the joint crossover/DRB raise
+        # can end on another trade-off than the one the candidates were polished for
+        for g0, _ in candidates[:settings.multistart_polish]:
+            g1, wc1, _ = ratio_polish(designs, final_specs, g0, tolerance=settings.tolerance,
+                                      max_evaluations=settings.multistart_evaluations)
+            if np.isfinite(wc1) and not (np.isfinite(wc_pol) and wc_pol >= wc1):
+                g_pol, wc_pol = g1, wc1
         wc_now = _value(best.specs, roles[0])
         if np.isfinite(wc_pol) and wc_pol > wc_now * (1 + settings.tolerance):
             boundary = wc_pol * (1 - settings.tolerance / 2)
