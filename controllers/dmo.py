@@ -56,6 +56,7 @@ from tqdm.auto import tqdm
 from .dmo_settings import DMOSettings, InfeasibleDesignError, SolverError, VerificationError
 from .emf import EMFDesign, PIDGains
 from .gain_sampling import extend_along_ray, sample_gains
+from .multistart import multistart, ratio_polish
 from .nlp import _Problem, _gain_scale
 from .optimization import _verify_all, optimize
 from .scoring import OptimizationResult, _as_designs, _scored, design_margins
@@ -84,6 +85,9 @@ class DMOResult:
     samples: pd.DataFrame | None = None
     #: global stage: the best samples pushed along their gain ratios
     candidates: pd.DataFrame | None = None
+    #: multistart stage: every start scored and the polished ones (None without one)
+    starts: pd.DataFrame | None = None
+    polished: pd.DataFrame | None = None
     #: which path gave the answer ("starting gains" or "global candidate", ...)
     origin: str = ""
     #: True when no global stage ran: the answer is only local
@@ -175,7 +179,12 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
     with DRB held. (3) The winner's gains are pushed along their ratios once more under
     its final boundaries. The design with the highest crossover wins. With
     ``global_samples = 0`` only the local stage runs and the result says so
-    (``local_only``).
+    (``local_only``). With ``settings.multistart`` > 0 (off by default) a multistart
+    stage (:func:`controllers.multistart.multistart`: seeded starts over every gain's
+    log range and the starting gains, each polished on the true specs) adds its best
+    design to the candidates of stage (2), and a last stage follows the winner's gain
+    ratios along the binding spec boundary (:func:`controllers.multistart.ratio_polish`),
+    the crossover boundary then raised to what it reaches.
 
     Parameters
     ----------
@@ -241,6 +250,15 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
     if settings.global_samples:
         bar.set_postfix(stage="global sample")
         samples, candidates, extended = _global_candidates(designs, specs0, settings, crossover_start)
+    starts = polished = None
+    if settings.multistart:
+        bar.set_postfix(stage="multistart")
+        starts, polished_c, polished = multistart(
+            designs, specs0, crossover_start, n_starts=settings.multistart, n_polish=settings.multistart_polish,
+            decades=settings.multistart_decades, seed=settings.seed,
+            polish_evaluations=settings.multistart_evaluations, extra_starts=[designs[0].gains])
+        # the NLP continuation starts from the best of both stages
+        candidates = sorted(candidates + polished_c, key=lambda c: -c[1])
 
     def attempt(path, stage, t_c, t_d, x0):
         wc, wd = crossover_start * t_c, drb_start * t_d
@@ -313,11 +331,32 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
     g_ext, _, _ = extend_along_ray(best.designs, final_specs, best.design.gains, settings.tolerance)
     if g_ext is not best.design.gains:
         best = _scored(designs, final_specs, g_ext, best.crossover_min, best.drb_min, labels)
+    polished_final = False
+    if settings.multistart:
+        # stage 4 (multistart only): a compass search over the winner's gain ratios on the true
+        # specs, each ratio pushed to the feasible edge: it follows a spec boundary that runs
+        # obliquely across the gains, where the NLP's back-off and a search over the gains stall
+        g_pol, wc_pol, _ = ratio_polish(designs, final_specs, best.design.gains, tolerance=settings.tolerance,
+                                        max_evaluations=3 * settings.multistart_evaluations)
+        # the best other candidates too, at the final boundaries: the joint crossover/DRB raise
+        # can end on another trade-off than the one the candidates were polished for
+        for g0, _ in candidates[:settings.multistart_polish]:
+            g1, wc1, _ = ratio_polish(designs, final_specs, g0, tolerance=settings.tolerance,
+                                      max_evaluations=settings.multistart_evaluations)
+            if np.isfinite(wc1) and not (np.isfinite(wc_pol) and wc_pol >= wc1):
+                g_pol, wc_pol = g1, wc1
+        wc_now = _value(best.specs, roles[0])
+        if np.isfinite(wc_pol) and wc_pol > wc_now * (1 + settings.tolerance):
+            boundary = wc_pol * (1 - settings.tolerance / 2)
+            cand = _scored(designs, specs_factory(boundary, best.drb_min), g_pol, boundary, best.drb_min, labels)
+            if cand.feasible:
+                best, polished_final = cand, True
     bar.close()
     _verify_all(best.designs, settings)
     history = pd.DataFrame(rows)
     hi, upper = win["hi"], win["upper"]
     origin = win["path"] + (", pushed along its gain ratios" if g_ext is not win["best"].design.gains else "")
+    origin += ", polished on the true specs" if polished_final else ""
     if hi is None:
         limiting = []
         msg = (f"DMO stopped at the step limit ({settings.max_steps} expanding steps): crossover boundary "
@@ -328,9 +367,9 @@ def dmo(design, specs_factory=default_specs, settings=None, crossover_start=1.5,
                f"feasible, {crossover_start * hi:.4g} not; limiting spec(s): {', '.join(limiting)}; "
                f"most limiting at the design: {best.limiting_spec} (margin {best.min_margin:.3g})")
     msg += f"; from the {origin}"
-    if not settings.global_samples:
+    if not (settings.global_samples or settings.multistart):
         msg += "; local answer only (no global stage)"
     return DMOResult(best.design, best.designs, best.specs, history, limiting, time.perf_counter() - t0, msg,
-                     settings.tolerance, samples=samples, candidates=extended, origin=origin,
-                     local_only=not settings.global_samples, crossover_boundary=best.crossover_min,
+                     settings.tolerance, samples=samples, candidates=extended, starts=starts, polished=polished,
+                     origin=origin, local_only=not (settings.global_samples or settings.multistart), crossover_boundary=best.crossover_min,
                      drb_boundary=best.drb_min, crossover_spec=roles[0])

@@ -66,6 +66,17 @@ class DMOSettings:
     global_scale_span : (float, float)
         Range of K_phi sampled, in units of the gain that puts |L| = 1 at the starting
         crossover boundary.
+    multistart : int
+        Sobol starts of the multistart stage (:func:`controllers.multistart.multistart`:
+        every gain free on its own log scale over ``multistart_decades``, the best
+        feasible starts and the starting gains polished on the true specs; the NLP
+        continuation then also runs from the best). 0 (default) leaves it out.
+    multistart_polish : int
+        Best feasible starts (one per basin) polished by the multistart stage.
+    multistart_evaluations : int
+        Spec evaluations per polished start.
+    multistart_decades : (float, float)
+        log10 range of each gain in its natural unit (as :func:`controllers.search.global_search`).
     """
 
     omega: np.ndarray = field(default_factory=lambda: np.geomspace(0.05, 80.0, 250))
@@ -81,6 +92,10 @@ class DMOSettings:
     global_samples: int = 64
     global_candidates: int = 2
     global_scale_span: tuple = (0.2, 10.0)
+    multistart: int = 0
+    multistart_polish: int = 3
+    multistart_evaluations: int = 60
+    multistart_decades: tuple = (-3.0, 2.0)
     verify_tolerance_db: float = 0.5   #: optimiser vs python-control GM agreement
     verify_tolerance_deg: float = 2.0  #: ... PM agreement
     actuator_weight: float = 0.1
@@ -114,10 +129,15 @@ class DMOSettings:
             raise ValueError(f"DMOSettings.growth must be > 1, got {self.growth}")
         if self.n_starts < 0 or self.max_steps < 1:
             raise ValueError("DMOSettings.n_starts must be >= 0 and max_steps >= 1")
-        for name in ("global_samples", "global_candidates"):
+        for name in ("global_samples", "global_candidates", "multistart", "multistart_polish",
+                     "multistart_evaluations"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
                 raise ValueError(f"DMOSettings.{name} must be an integer >= 0, got {v!r}")
+        lo, hi = self.multistart_decades
+        if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+            raise ValueError(f"DMOSettings.multistart_decades must be (low, high) with low < high, "
+                             f"got {self.multistart_decades!r}")
         lo, hi = self.global_scale_span
         if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
             raise ValueError(f"DMOSettings.global_scale_span must be (low, high) with 0 < low < high, "

@@ -285,9 +285,16 @@ class EMFDesign:
         new = object.__new__(EMFDesign)
         new.__dict__.update(self.__dict__)
         new.gains = gains
-        # gain-independent poles (command model, feed-forward, sync) are shared
+        # gain-independent poles (command model, feed-forward, sync) live in the shared
+        # dict, which the copy holds by reference: a search that scores hundreds of gain
+        # sets from one parent design computes them once, not once per gain set
         new._cache = {k: v for k, v in self._cache.items() if k[0] == "fixed"}
+        new._shared = self._shared_cache()
         return new
+
+    def _shared_cache(self):
+        """Gain-independent results shared by every :meth:`with_gains` copy (created on first use)."""
+        return self.__dict__.setdefault("_shared", {})
 
     def with_plant(self, plant):
         """Copy evaluated on another bare airframe, keeping gains, inverse plant and
@@ -401,6 +408,9 @@ class EMFDesign:
         each; the loop sees one of them) and the disturbance rate filter.
         """
         key = ("fixed", pade_order)
+        shared = self._shared_cache()
+        if key in shared and key not in self._cache:
+            self._cache[key] = shared[key]
         if key not in self._cache:
             def pade(tau):
                 return control.tf(*control.pade(tau, pade_order)) if tau > 0 else control.tf([1.0], [1.0])
@@ -411,6 +421,7 @@ class EMFDesign:
                       pade(self.sensor_delay), control.tf([1.0, 0.0], [0.001, 1.0])]
             self._cache[key] = np.concatenate([np.linalg.eigvals(control.ss(b).A) if control.ss(b).nstates
                                                else np.zeros(0, complex) for b in blocks])
+            shared[key] = self._cache[key]
         return self._cache[key]
 
     def closed_loop_poles(self, pade_order=3, cancel_radius=0.02, match_tol=0.25):
@@ -442,8 +453,11 @@ class EMFDesign:
         loop = control.feedback(self.broken_loop_statespace(pade_order), 1)
         poles = np.concatenate([np.linalg.eigvals(loop.A), self._fixed_poles(pade_order)])
         zkey = ("fixed", "plant zeros", pade_order)
+        shared = self._shared_cache()
+        if zkey not in self._cache and zkey in shared and shared[zkey][0] is self.plant:
+            self._cache[zkey] = shared[zkey]
         if zkey not in self._cache or self._cache[zkey][0] is not self.plant:
-            self._cache[zkey] = (self.plant, self.plant.to_statespace(pade_order).zeros())
+            self._cache[zkey] = shared[zkey] = (self.plant, self.plant.to_statespace(pade_order).zeros())
         plant_zeros = self._cache[zkey][1]
         slow_zeros = plant_zeros[np.abs(plant_zeros) < 2 * cancel_radius]
         keep = np.ones(poles.size, bool)

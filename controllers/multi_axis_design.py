@@ -10,8 +10,10 @@ per stick with every other loop closed at its current gains (an axis not yet
 designed in the first sweep is left open), the inverse plant and tau_eq
 re-fitted to that on-axis response. Sweeps repeat until no gain moves by more
 than ``gain_tolerance`` (its share of the controller at crossover), at most ``max_sweeps`` times; the first
-sweep runs the DMO's global stage, later sweeps continue locally from the
-current gains (the plants change little once the loops are closed).
+sweep runs the DMO's ray-sampling global stage, and every sweep its multistart
+stage (seeded starts over the whole gain box and the current gains, polished on
+the true specs), so that a later sweep cannot settle on a local optimum that a
+continuation from the current gains alone would end on.
 
 Why this and not one NLP over all twelve gains: each axis's specs read its own
 loop broken at its actuator with the others closed (CONDUIT's convention), and
@@ -51,10 +53,15 @@ from .multi_axis import (AXIS_CHANNELS, AxisLoop, MultiAxisEMF, RateCommandModel
 from .plants import second_order_actuator
 from .specs import evaluate_specs
 
-__all__ = ["AxisEMFDesign", "axis_specs", "design_multi_axis", "MultiAxisResult", "DEFAULT_CROSSOVER_START"]
+__all__ = ["AxisEMFDesign", "axis_specs", "design_multi_axis", "MultiAxisResult", "DEFAULT_CROSSOVER_START",
+           "DEFAULT_SETTINGS"]
 
 #: first crossover boundary the DMO tries per axis [rad/s] (heave loops cross lower)
 DEFAULT_CROSSOVER_START = {"roll": 1.5, "pitch": 1.5, "yaw": 1.0, "heave": 0.5}
+#: DMO settings of :func:`design_multi_axis` when none are given: the multistart stage on
+#: (64 Sobol starts over every gain's log range, 3 polished), so that each axis's answer is
+#: the global one and not the end of one continuation
+DEFAULT_SETTINGS = DMOSettings(multistart=64)
 #: spec families graded on time histories of a stated control amplitude: not DMO constraints
 _TIME_HISTORY_FAMILIES = ("large_amplitude", "coupling")
 #: later sweeps restart the boundary raise at this fraction of the boundary reached
@@ -140,8 +147,33 @@ class AxisEMFDesign(EMFDesign):
         return poles
 
     def rate_response_system(self, pade_order=3):
-        """Closed-loop signed rate per pilot stick as a SISO StateSpace (Padé delays)."""
-        return self.closed_loop(pade_order)[0, 0]
+        """Closed-loop signed rate per pilot stick as a SISO StateSpace (Padé delays).
+
+        The same blocks as :meth:`closed_loop` (command, feed-forward, synchronisation,
+        PID on the sensed attitude and rate, actuator, plant), joined by state-space
+        series, parallel and feedback: the transfer function of ``closed_loop()[0, 0]``
+        (tested) without ``interconnect``'s numerical linearisation, which costs most
+        of a heave spec evaluation.
+        """
+        def pade(tau):
+            return (control.ss(control.tf(*control.pade(tau, pade_order))) if tau > 0
+                    else control.ss([], [], [], [[1.0]]))
+
+        k = self.gains
+        s = control.tf("s")
+        cm = self.command_model.tf()
+        sync = pade(self.equivalent_delay)
+        attitude = control.ss(control.tf(np.array(cm.num[0][0]), cm.den[0][0])) * sync
+        rate = control.ss(control.minreal(s * cm, verbose=False)) * sync
+        feedforward = control.ss(control.minreal(s * cm / self.inverse_plant, verbose=False))
+        # PID on the attitude error (K_phi + K_Iphi/s) and on the rate error (K_p)
+        pi = control.ss([[0.0]], [[1.0]], [[k.K_Iphi]], [[k.K_phi]])
+        command = feedforward + pi * attitude + control.ss([], [], [], [[k.K_p]]) * rate
+        kinematics = control.ss([[0.0]], [[1.0]], [[1.0]], [[0.0]])
+        sensed = pade(self.sensor_delay)
+        feedback = pi * kinematics * sensed + control.ss([], [], [], [[k.K_p]]) * sensed
+        forward = control.ss(self.plant.to_statespace(pade_order)) * control.ss(self.actuator)
+        return control.feedback(forward, feedback) * command
 
 
 def _check_channel(plant, channel):
@@ -416,8 +448,10 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     drb_start : float
         First roll DRB boundary [rad/s].
     settings, later_settings : DMOSettings, optional
-        DMO settings of the first sweep and of the later sweeps (default: the
-        first with its global stage, later ones local only from the current gains).
+        DMO settings of the first sweep and of the later sweeps (default:
+        :data:`DEFAULT_SETTINGS` for the first, with its ray-sampling global stage and
+        the multistart stage; later ones without the ray sampling, the multistart
+        stage polishing the current gains among its starts).
     max_sweeps : int
         Most sweeps over the axes.
     gain_tolerance : float
@@ -466,7 +500,7 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     MultiAxisEMF(plant, {a: AxisLoop(PIDGains(0, 0, 0), inverse_plant=control.tf(1, 1)) for a in axes})  # names
     if not isinstance(max_sweeps, int) or max_sweeps < 1:
         raise ValueError(f"max_sweeps must be an integer >= 1, got {max_sweeps!r}")
-    settings = settings or DMOSettings()
+    settings = settings or DEFAULT_SETTINGS
     later_settings = later_settings or replace(settings, global_samples=0)
     actuator = second_order_actuator(35.0, 0.7) if actuator is None else actuator
     gains = {a: (start_gains or {}).get(a, PIDGains(0.3, 0.1, 0.05)) for a in axes}

@@ -154,8 +154,11 @@ STUDIES = {s.command: s for s in (
           default_out="results/harrington_hover_power"),
     Study("multi-axis-hover-design", "studies.multi_axis_hover_design",
           "four-axis EMF design of the coaxial in hover with actuator limits in the OLOP: per-axis HQ windows, "
-          "coupling, and a global search that tries to beat each axis's DMO answer", 8.0,
+          "coupling, and a global search that tries to beat each axis's DMO answer", 4.0,
           default_out="results/multi_axis_hover_design"),
+    Study("multi-axis-hover-design-single-rotor", "studies.multi_axis_hover_design_single_rotor",
+          "the same four-axis hover design and global check on the UH-60-like single rotor (Pitt-Peters)", 6.0,
+          default_out="results/multi_axis_hover_design_single_rotor"),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),
