@@ -20,7 +20,7 @@ from __future__ import annotations
 import re
 import warnings
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import control
 import numpy as np

@@ -30,7 +30,7 @@ literature and marked as approximations where the source is a chart):
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass
 from typing import Callable, Optional
 
 import numpy as np

@@ -34,7 +34,6 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
 from aircraft.configs import uh60_single_rotor

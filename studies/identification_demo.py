@@ -17,7 +17,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from aircraft.identification.structures import Coaxial6State
 from aircraft.identification.testing import SWASHPLATE_CONTROLS as CONTROLS

@@ -11,7 +11,6 @@ from pathlib import Path
 
 import control
 import numpy as np
-import pandas as pd
 import pytest
 from matplotlib.figure import Figure
 from scipy.optimize import brentq
@@ -22,7 +21,7 @@ from controllers.plants import second_order_actuator
 from controllers import metrics as m
 from controllers.hq import BoundaryNotPublishedError, LevelRegions, all_specs, spec_table, specs_for
 from controllers.hq.bandwidth import BANDWIDTH_LIMITS, bandwidth_chart, bandwidth_specs, rectangle_regions
-from controllers.hq.base import HQSpec, RegionSpec
+from controllers.hq.base import HQSpec
 from controllers.hq.boundaries import point_in_polygon, signed_distance
 from controllers.hq.charts import family_window, spec_chart
 from controllers.hq.coupling import coupling_ratio, coupling_specs, peak_excursion

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .mixing import MixingError, mixing_matrix, pilot_inputs
+from .mixing import MixingError, mixing_matrix
 
 __all__ = ["quasi_steady_moments", "cyclic_moment_shares", "derive_control_phase"]
 

@@ -27,7 +27,6 @@ Provenance of the numbers (see also ``results/hq_spec_library``):
 """
 from __future__ import annotations
 
-import numpy as np
 
 from .. import metrics as m
 from .base import RegionSpec

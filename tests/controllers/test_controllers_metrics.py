@@ -3,7 +3,7 @@ import pytest
 import control
 from scipy.optimize import brentq
 
-from controllers import DelayedLTI, attitude_bandwidth, crossover_frequency, gain_phase_margins
+from controllers import DelayedLTI, attitude_bandwidth, gain_phase_margins
 from controllers.metrics import (damping_in_band, disturbance_rejection_bandwidth, disturbance_rejection_peak, nichols_margin)
 from controllers.emf import FrequencyFunction
 
