@@ -1,8 +1,6 @@
-import math
-
 import pytest
 
-from aircraft.configs import GRAVITY, RotorConfig, coaxial_compound, uh60_single_rotor
+from aircraft.configs import RotorConfig, coaxial_compound, uh60_single_rotor
 
 
 def test_uh60_solidity_and_thrust_coefficient_match_appendix_b1():

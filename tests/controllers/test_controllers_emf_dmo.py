@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 import control
 
-from controllers import (CommandModel, DMOSettings, EMFDesign, PIDGains, default_specs, dmo, evaluate_specs, hover_roll_plant, hq_window, optimize)
+from controllers import (DMOSettings, EMFDesign, PIDGains, default_specs, dmo, evaluate_specs, hover_roll_plant, hq_window, optimize)
 from controllers.emf import fit_equivalent_delay, fit_inverse_plant
 from controllers.plants import second_order_actuator
 from controllers.emf import FrequencyFunction

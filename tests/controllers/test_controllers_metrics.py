@@ -5,7 +5,6 @@ from scipy.optimize import brentq
 
 from controllers import DelayedLTI, attitude_bandwidth, gain_phase_margins
 from controllers.metrics import (damping_in_band, disturbance_rejection_bandwidth, disturbance_rejection_peak, nichols_margin)
-from controllers.emf import FrequencyFunction
 
 DENSE = np.geomspace(0.01, 300.0, 20000)
 

@@ -7,7 +7,7 @@ import control
 import scipy.signal as sig
 from matplotlib.figure import Figure
 
-from flightid import (FGCStructure, IdentificationError, MeasuredResponse, MLTauStructure, DataError, combine_responses, fit, frequency_response, frequency_sweep, joint_input_output)
+from flightid import (FGCStructure, IdentificationError, MeasuredResponse, MLTauStructure, DataError, fit, frequency_response, frequency_sweep, joint_input_output)
 from flightid.errors import UnstableModelError
 from flightid.verification import theil_inequality
 

@@ -86,5 +86,5 @@ def test_every_results_folder_has_a_readme_that_says_how_to_rerun_it(generator):
             if not (where / "manifest.json").is_file():
                 continue                                   # not committed (yet)
             text = (where / "README.md").read_text()
-            assert "rotorwake " in text and f"docs/studies/" in text, folder
+            assert "rotorwake " in text and "docs/studies/" in text, folder
             assert not _decimals(text), folder   # no result numbers

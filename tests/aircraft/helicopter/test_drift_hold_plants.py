@@ -9,7 +9,6 @@ design band as it is.
 """
 import control
 import numpy as np
-import pytest
 
 from aircraft.configs import coaxial_compound
 from aircraft.helicopter import HelicopterSettings, linearize, trim

@@ -4,9 +4,9 @@ import control
 from scipy.integrate import solve_ivp
 
 from aircraft import coaxial_compound, uh60_single_rotor
-from aircraft.helicopter import (CouplingError, Helicopter, HelicopterSettings, TrimCondition, TrimError,
+from aircraft.helicopter import (CouplingError, Helicopter, HelicopterSettings, TrimCondition,
                                  coupling_numerator, linearize, mixing_matrix, modes, trim)
-from aircraft.inflow import ClimbingLowerRotor, DynamicClimb, IdentifiedInflow, IsolatedRotors, PittPeters
+from aircraft.inflow import ClimbingLowerRotor, IdentifiedInflow, IsolatedRotors, PittPeters
 from aircraft.inflow.published import COAXIAL_HOVER_6STATE
 
 FAST = HelicopterSettings(n_span=6, n_average=1)   # hover is axisymmetric: one azimuth is exact

@@ -13,7 +13,7 @@ import pytest
 
 from aircraft import coaxial_compound, uh60_single_rotor
 from aircraft.configs import AircraftConfig, ConfigError
-from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, linearize, trim
+from aircraft.helicopter import Helicopter, HelicopterSettings, linearize, trim
 from aircraft.helicopter.control_phase import cyclic_moment_shares, derive_control_phase, quasi_steady_moments
 from aircraft.helicopter.mixing import (MixingError, cyclic_rotation, lateral_cyclic_difference_controls,
                                         mixing_matrix, pilot_inputs)
