@@ -128,3 +128,15 @@ def test_results_reruns_each_study_with_the_options_of_its_committed_manifest(tm
     out = _python(code)
     assert "OFF ['--coarse']" in out
     assert "FWD []" in out and "MAIN []" in out
+
+
+def test_the_shipped_models_command_prints_progress_and_wall_time():
+    # regenerate is replaced by a stand-in (no wake run): the command's own lines are checked
+    out = _python("import types\nfrom studies import cli\nfrom aircraft.identification import shipped\n"
+                  "done = []\nshipped.regenerate = lambda name, **kw: done.append(name)\n"
+                  "args = types.SimpleNamespace(list=False, check=False, published=False, names=['a', 'b'], "
+                  "jobs=1, cache=None)\n"
+                  "print('RC', cli._shipped_models(args), done)")
+    assert "RC 0 ['a', 'b']" in out
+    for line in ("[1/2] a: regenerating", "[2/2] b: regenerating", "[2/2] wrote ", "regenerated 2 model file(s) in"):
+        assert line in out, out

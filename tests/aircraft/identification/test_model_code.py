@@ -1,6 +1,5 @@
 """Shipped model files go stale when the code that computed them changes (code digest)."""
 import shutil
-import types
 from pathlib import Path
 
 import pytest
@@ -112,18 +111,6 @@ def test_regenerate_records_the_code_digest_of_a_printed_model(tmp_path):
     assert "flightid/fitting.py" in back.code_digests
     assert back.provenance["kernel_backend"] in ("cpu", "gpu", "none")
     assert staleness(back, rec.settings_hash) == []
-
-
-def test_the_regenerate_command_prints_progress_and_wall_time(monkeypatch, capsys):
-    import studies.cli as cli
-    done = []
-    monkeypatch.setattr(shipped, "regenerate", lambda name, **kw: done.append(name))
-    args = types.SimpleNamespace(list=False, check=False, published=False, names=["a", "b"], jobs=1, cache=None)
-    assert cli._shipped_models(args) == 0
-    out = capsys.readouterr().out
-    assert done == ["a", "b"]
-    for line in ("[1/2] a: regenerating", "[2/2] b: regenerating", "[2/2] wrote ", "regenerated 2 model file(s) in"):
-        assert line in out, out
 
 
 def test_a_reason_names_at_most_a_few_modules(here):
