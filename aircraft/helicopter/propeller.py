@@ -18,8 +18,9 @@ with the exact angles, against the annulus momentum thrust::
 model). The induced velocity of each annulus is solved by Newton iteration to
 round-off, so the loads are smooth in every argument and finite-difference
 linearisation sees them. In the small-angle limit this is the classical
-annulus solution ``lambda(r) = sqrt((sigma a / 16 - mu / 2)^2 + sigma a theta r / 8)
-- (sigma a / 16 - mu / 2)``.
+annulus solution::
+
+    lambda(r) = sqrt((sigma a / 16 - mu / 2)^2 + sigma a theta r / 8) - (sigma a / 16 - mu / 2)
 """
 from __future__ import annotations
 
