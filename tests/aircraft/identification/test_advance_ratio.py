@@ -8,30 +8,24 @@ forward-flight structure with its longitudinal couplings and delays). The pipeli
 (sweeps -> chirp-z -> joint input-output -> fit) must recover each within 5 %.
 """
 import math
-from types import SimpleNamespace
 
 import matplotlib
 import numpy as np
-import pandas as pd
 import pytest
-import scipy.signal as sig
 
 import aircraft.wake as wake_pkg
 from aircraft.configs import uh60_single_rotor
 from aircraft.identification import IdentificationSettings
 from aircraft.identification.advance_ratio import AdvanceRatioSweep, identify_over_advance_ratio
 from aircraft.identification.structures.forward import KEY_RESPONSES
-from aircraft.identification.testing import mixing_matrix, simulate_mltau
 from aircraft.inflow.published import UH60_HOVER_MFW, UH60_MU02_MFW
 from aircraft.wake import WakeSettings
+from tests.aircraft.identification._simulated_wake import simulated_runs
 
 matplotlib.use("Agg")
 
 SETTINGS = IdentificationSettings(wake=WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5,
                                                     n_elements=5), reduce=False, sweep_s=45.0)
-CONTROLS = ["theta0", "theta1s", "theta1c"]
-LOADS = ["CT", "CL", "CM"]
-LAMS = ["lam0", "lam1s", "lam1c"]
 OMEGA = float(uh60_single_rotor().rotors[0].omega)
 
 #: hover truth: the printed hover 3-state (Table 4.1: diagonal, cyclic rows equal), M per d/dpsi
@@ -47,25 +41,9 @@ def _truth(flight):
 
 def _fake_run_sweeps(config, settings, flight, specs, **kwargs):
     truth = _truth(flight)
-    dt = settings.azimuth_step / OMEGA
-    lag = sig.StateSpace(-20.0 * np.eye(3), 20.0 * mixing_matrix(3, 5), np.eye(3), np.zeros((3, 3)))
-    out = {}
-    for k, spec in enumerate(specs):
-        inputs = spec.inputs(dt)
-        t = max((tt for tt, _ in inputs.values()), key=len)
-        theta = np.zeros((t.size, 3))
-        for c, (tc, u) in inputs.items():
-            theta[:, CONTROLS.index(c)] = np.interp(t, tc, u, right=0.0)
-        _, loads, _ = sig.lsim(lag, theta, t)
-        lam = simulate_mltau(truth["M"], truth["Lbar"], truth["tau"], OMEGA, t, loads.T).T
-        rng = np.random.default_rng(k)
-        # 0.5 % measurement noise of each signal's RMS (and a floor for the zero-input run)
-        noisy = [x + 0.005 * (x.std(axis=0) + 1e-6) * rng.standard_normal(x.shape) for x in (loads, lam)]
-        out[spec.name] = pd.DataFrame({"t": t, **dict(zip(CONTROLS, theta.T)), **dict(zip(LOADS, noisy[0].T)),
-                                       **dict(zip(LAMS, noisy[1].T))})
-    out["trim"] = SimpleNamespace(converged=True, residual=0.0, controls=dict.fromkeys(CONTROLS, 0.0),
-                                  outputs={**dict.fromkeys(LOADS + LAMS, 0.0), "CT": 0.0061, "lam0": 0.05})
-    return out
+    # 0.5 % measurement noise of each signal's RMS (and a floor for the zero-input run)
+    return simulated_runs(specs, settings.azimuth_step / OMEGA, OMEGA, truth["M"], truth["Lbar"], truth["tau"],
+                          noise=0.005, trim_outputs={"CT": 0.0061, "lam0": 0.05})
 
 
 @pytest.fixture()

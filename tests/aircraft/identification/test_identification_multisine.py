@@ -8,12 +8,10 @@ input-output -> fit -> verification) is checked against numbers it did not make.
 The real wake is exercised by tests/aircraft/wake/test_wake_multisine.py and benchmarks/multisine.py.
 """
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
 import pytest
-import scipy.signal as sig
 
 import aircraft.wake as wake_pkg
 from aircraft.configs import uh60_single_rotor
@@ -21,41 +19,21 @@ from aircraft.identification import IdentificationSettings, PipelineError, ident
 from aircraft.identification.structures import SingleRotor3State
 from aircraft.identification.multisine import (MultisineSettings, identify_inflow_multisine,
                                                record_revolutions)
-from aircraft.identification.testing import mixing_matrix, simulate_mltau
 from aircraft.wake import WakeSettings
+from tests.aircraft.identification._simulated_wake import LAMS, simulated_runs
 
 TRUTH = {"m11": 0.85, "m22": 0.4, "l11": 1.2, "l22": 0.6, "t11": 0.03, "t22": 0.02}
 SETTINGS = IdentificationSettings(wake=WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5,
                                                     n_elements=5), reduce=False, sweep_s=45.0)
-CONTROLS = ["theta0", "theta1s", "theta1c"]
-LOADS = ["CT", "CL", "CM"]
-LAMS = ["lam0", "lam1s", "lam1c"]
 
 
 def _fake_run_sweeps(config, settings, flight, specs, **kwargs):
     omega = float(config.rotors[0].omega)
-    dt = settings.azimuth_step / omega
     M = np.diag([TRUTH["m11"], TRUTH["m22"], TRUTH["m22"]])
     L = np.diag([TRUTH["l11"], TRUTH["l22"], TRUTH["l22"]])
     tau = np.diag([TRUTH["t11"], TRUTH["t22"], TRUTH["t22"]])
-    lag = sig.StateSpace(-20.0 * np.eye(3), 20.0 * mixing_matrix(3, 5), np.eye(3), np.zeros((3, 3)))
-    out = {}
-    for k, spec in enumerate(specs):
-        inputs = spec.inputs(dt)
-        t = max((tt for tt, _ in inputs.values()), key=len)
-        theta = np.zeros((t.size, 3))
-        for c, (tc, u) in inputs.items():
-            theta[:, CONTROLS.index(c)] = np.interp(t, tc, u, right=0.0)
-        _, loads, _ = sig.lsim(lag, theta, t)
-        lam = simulate_mltau(M, L, tau, omega, t, loads.T).T
-        rng = np.random.default_rng(k)
-        # 1 % measurement noise of each signal's RMS (and a floor for the zero-input run)
-        noisy = [x + 0.01 * (x.std(axis=0) + 1e-6) * rng.standard_normal(x.shape) for x in (loads, lam)]
-        out[spec.name] = pd.DataFrame({"t": t, **dict(zip(CONTROLS, theta.T)), **dict(zip(LOADS, noisy[0].T)),
-                                       **dict(zip(LAMS, noisy[1].T))})
-    out["trim"] = SimpleNamespace(converged=True, residual=0.0, controls=dict.fromkeys(CONTROLS, 0.0),
-                                  outputs=dict.fromkeys(LOADS + LAMS, 0.0))
-    return out
+    # 1 % measurement noise of each signal's RMS (and a floor for the zero-input run)
+    return simulated_runs(specs, settings.azimuth_step / omega, omega, M, L, tau, noise=0.01)
 
 
 @pytest.fixture()
