@@ -84,6 +84,17 @@ def _kernel_key():
     return {"kernel": backend, "kernel_code": hashlib.sha256(src.read_bytes()).hexdigest()}
 
 
+def _blade_key(config):
+    """Cache-key entry of the real-blade model: its source (``aircraft/blade.py``,
+    which computes the sections' lift and drag outside this package) when a rotor
+    uses one, nothing for the classical blade, whose numbers are all in the wake's
+    own modules (so the dissertation's aircraft keep their entries)."""
+    if all(getattr(r, "blade", None) is None for r in config.rotors):
+        return {}
+    src = Path(__file__).resolve().parent.parent / "blade.py"
+    return {"blade_code": hashlib.sha256(src.read_bytes()).hexdigest()}
+
+
 def _signal_digest(spec, dt):
     """SHA-256 of the input time histories ``spec`` produces at step ``dt`` [s]: the
     key holds what the wake is driven with, whatever code generated it."""
@@ -533,7 +544,7 @@ def run_sweeps(config, settings, flight, specs, *, trim=None, points=None, n_job
     points = dict(points or {})
     base = {"v": _CACHE_VERSION, "code": _wake_code_digest(), "config": repr(config), "settings": asdict(settings),
             "flight": asdict(flight), "trim": trim,
-            "points": {k: list(map(float, v)) for k, v in points.items()}, **_kernel_key()}
+            "points": {k: list(map(float, v)) for k, v in points.items()}, **_kernel_key(), **_blade_key(config)}
     dt = settings.azimuth_step / float(config.rotors[0].omega)   # the wake's time step [s]
     keys = {s.name: _key({**base, "spec": asdict(s), "signal": _signal_digest(s, dt)}) for s in specs}
     folder = resolve_cache_dir(cache_dir)

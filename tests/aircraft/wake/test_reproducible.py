@@ -131,6 +131,24 @@ def test_wake_cache_never_serves_results_of_other_code(tmp_path, monkeypatch):
     pd.testing.assert_frame_equal(second["sine_theta0"], first["sine_theta0"], check_exact=True)
 
 
+def test_real_blade_source_keys_the_cache_only_for_bladed_rotors():
+    # aircraft/blade.py computes a real blade's section lift and drag outside the wake
+    # package, so its source must key those runs; the classical blade's numbers are all
+    # in the wake's own modules, so the dissertation's aircraft keep their entries
+    import dataclasses
+    import hashlib
+    from pathlib import Path
+    import aircraft
+    from aircraft.blade import BladeModel, Polar
+    from aircraft.wake import sweeps as sweeps_module
+    classic = uh60_single_rotor()
+    assert sweeps_module._blade_key(classic) == {}
+    blade = BladeModel(polar=Polar(alpha=(-0.3, 0.0, 0.3), cl=(-1.2, 0.0, 1.2), cd=(0.05, 0.008, 0.05)))
+    bladed = dataclasses.replace(classic, rotors=(dataclasses.replace(classic.rotors[0], blade=blade),))
+    source = (Path(aircraft.__file__).parent / "blade.py").read_bytes()
+    assert sweeps_module._blade_key(bladed) == {"blade_code": hashlib.sha256(source).hexdigest()}
+
+
 def test_initial_perturbation_gives_another_machines_records():
     # the reproduction check's second data set: a start displaced by 1e-7 R (single-precision
     # rounding) must change the records (else the check compares a data set with itself) and
