@@ -17,11 +17,11 @@ An aircraft is also data: ``write_aircraft`` / ``read_aircraft``
 """
 from .configs import (AircraftConfig, ConfigError, PropellerConfig, RotorConfig, TailRotorConfig, ASSUMPTIONS,
                       coaxial_compound, uh60_single_rotor)
-from .config_files import ConfigFileError, load_shipped_aircraft, read_aircraft, write_aircraft
+from .config_files import ConfigFileError, load_aircraft, load_shipped_aircraft, read_aircraft, write_aircraft
 
 __all__ = ["AircraftConfig", "ConfigError", "PropellerConfig", "RotorConfig", "TailRotorConfig", "ASSUMPTIONS",
            "coaxial_compound", "uh60_single_rotor", "read_aircraft", "write_aircraft",
-           "load_shipped_aircraft", "ConfigFileError", "identify_inflow", "IdentificationSettings",
+           "load_shipped_aircraft", "load_aircraft", "ConfigFileError", "identify_inflow", "IdentificationSettings",
            "IdentifiedModel"]
 
 _IDENTIFICATION = ("identify_inflow", "IdentificationSettings", "IdentifiedModel")

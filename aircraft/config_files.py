@@ -75,7 +75,7 @@ from .blade import BladeModel
 from .configs import AircraftConfig, ConfigError, PropellerConfig, RotorConfig, TailRotorConfig
 
 __all__ = ["ConfigFileError", "FORMAT_VERSION", "write_aircraft", "read_aircraft", "shipped_aircraft",
-           "load_shipped_aircraft"]
+           "load_shipped_aircraft", "load_aircraft"]
 
 #: Version of the file layout the writer writes and the reader reads.
 FORMAT_VERSION = 1
@@ -603,3 +603,51 @@ def load_shipped_aircraft(name):
         raise ConfigFileError(f"no shipped aircraft {name!r}; shipped: {names}")
     resource = _shipped_dir() / f"{name}.toml"
     return _parse(resource.read_bytes(), f"aircraft/data/aircraft/{name}.toml")
+
+
+def load_aircraft(aircraft):
+    """An aircraft named on a command line or in a settings file: a shipped name or a file.
+
+    What the studies' ``--aircraft`` option accepts, so that every study runs on
+    a user's aircraft as well as on the dissertation's.
+
+    Parameters
+    ----------
+    aircraft : str, os.PathLike or aircraft.configs.AircraftConfig
+        The name of a shipped aircraft (see :func:`shipped_aircraft`), the path of
+        a TOML file (:func:`read_aircraft`; a name ending in ``.toml`` or an
+        existing file), or a configuration, returned as it is.
+
+    Returns
+    -------
+    aircraft.configs.AircraftConfig
+
+    Raises
+    ------
+    ConfigFileError
+        If the name is neither a shipped aircraft nor a file (the message lists the
+        shipped names), or the file is not a valid aircraft (see :func:`read_aircraft`).
+
+    See Also
+    --------
+    load_shipped_aircraft, read_aircraft
+
+    Examples
+    --------
+    >>> from aircraft import coaxial_compound
+    >>> from aircraft.config_files import load_aircraft
+    >>> load_aircraft("coaxial_compound") == coaxial_compound()
+    True
+    """
+    if isinstance(aircraft, AircraftConfig):
+        return aircraft
+    if not isinstance(aircraft, (str, os.PathLike)) or not str(aircraft):
+        raise ConfigFileError(f"aircraft must be a shipped aircraft's name or a TOML file's path, "
+                              f"got {aircraft!r}; shipped: {shipped_aircraft()}")
+    text = str(aircraft)
+    if text in shipped_aircraft():
+        return load_shipped_aircraft(text)
+    if text.endswith(".toml") or Path(text).is_file():
+        return read_aircraft(text)
+    raise ConfigFileError(f"aircraft {text!r} is neither a shipped aircraft nor a TOML file; "
+                          f"shipped: {shipped_aircraft()}")

@@ -32,7 +32,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from aircraft import identify_inflow
+from aircraft import identify_inflow, load_aircraft
 from aircraft.configs import coaxial_compound
 from aircraft.identification.structures import Coaxial6State, Coaxial12State
 from aircraft.identification import IdentificationSettings
@@ -58,11 +58,14 @@ CT_SYSTEM = COAXIAL_HOVER_6STATE.condition["CT_U"] + COAXIAL_HOVER_6STATE.condit
 
 
 def identify(settings=None, *, sweep_s=45.0, n_jobs=2, cache_dir="default", progress=True,
-             structure=STRUCTURE):
+             structure=STRUCTURE, aircraft=None):
     """Wake runs -> reduced fit of ``structure``. Returns ``(reduction, trim, model, omega)``
-    (``model``: the :class:`aircraft.identification.IdentifiedModel`)."""
+    (``model``: the :class:`aircraft.identification.IdentifiedModel`). ``aircraft``: a coaxial
+    configuration with rotors U and L, shipped name or TOML file
+    (:func:`aircraft.config_files.load_aircraft`; default the coaxial compound)."""
     label = "12-state" if structure.uses_flap_rates else "6-state"
-    model = identify_inflow(coaxial_compound(), None, structure, ct=CT_SYSTEM,
+    config = coaxial_compound() if aircraft is None else load_aircraft(aircraft)
+    model = identify_inflow(config, None, structure, ct=CT_SYSTEM,
                             settings=IdentificationSettings(wake=settings or WakeSettings(), sweep_s=sweep_s),
                             name=f"coaxial hover {label} from our wake", n_jobs=n_jobs, cache_dir=cache_dir,
                             progress=progress)
@@ -206,6 +209,8 @@ def main(argv=None):
     parser.add_argument("--coarse", action="store_true", help="15 deg steps, 2 revs of wake, 6 elements")
     parser.add_argument("--sweep-s", type=float, default=45.0, help="sweep record length [s]")
     parser.add_argument("--out", default="results/coaxial_wake_identification")
+    parser.add_argument("--aircraft", default=None,
+                        help="a shipped aircraft's name or an aircraft TOML file (default: coaxial_compound)")
     parser.add_argument("--no-12state", action="store_true", help="the 6-state model only")
     parser.add_argument("--no-diagnostics", action="store_true",
                         help="skip the 6-state's sum/difference and feedthrough fits")
@@ -213,7 +218,7 @@ def main(argv=None):
     settings = (WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
                 if args.coarse else WakeSettings())
     run_study(settings, sweep_s=args.sweep_s, out_dir=args.out, twelve=not args.no_12state,
-              diagnostics=not args.no_diagnostics)
+              diagnostics=not args.no_diagnostics, aircraft=args.aircraft)
 
 
 if __name__ == "__main__":

@@ -36,6 +36,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from aircraft import load_aircraft
 from aircraft.configs import uh60_single_rotor
 from aircraft.identification import IdentificationSettings, identify_over_advance_ratio, identify_wake_distortion
 from studies.analysis.forward_flight import forward_bode_overlay, forward_comparison_table
@@ -104,11 +105,16 @@ def cost_table(models):
 
 
 def run_study(wake="default", *, mus=(0.0, 0.1, 0.2, 0.3), alpha=0.0, ct=0.0061, small=False, kr=True,
-              out_dir="results/forward_flight_identification", n_jobs=2, cache_dir="default", progress=True):
-    """Run the study; return ``(coefficients, costs, kr_result or None)``."""
+              out_dir="results/forward_flight_identification", n_jobs=2, cache_dir="default", progress=True,
+              aircraft=None):
+    """Run the study; return ``(coefficients, costs, kr_result or None)``.
+
+    ``aircraft``: a single-rotor configuration, shipped name or TOML file
+    (:func:`aircraft.config_files.load_aircraft`; default the UH-60-like rotor).
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    cfg = uh60_single_rotor()
+    cfg = uh60_single_rotor() if aircraft is None else load_aircraft(aircraft)
     settings = _settings(wake, small)
     walls = []
     t0 = time.perf_counter()
@@ -175,6 +181,8 @@ def main(argv=None):
                         help="wake resolution (coarse: 15 deg steps, 2 revs, 6 elements)")
     parser.add_argument("--mu", type=float, nargs="+", default=[0.0, 0.1, 0.2, 0.3],
                         help="advance ratios (0: the hover 3-state)")
+    parser.add_argument("--aircraft", default=None,
+                        help="a shipped aircraft's name or an aircraft TOML file (default: uh60_single_rotor)")
     parser.add_argument("--alpha", type=float, default=0.0, help="shaft angle of attack [deg], positive back")
     parser.add_argument("--no-kr", action="store_true", help="skip the hover K_R sweeps")
     parser.add_argument("--small", action="store_true",
@@ -186,7 +194,7 @@ def main(argv=None):
     wake = "small" if args.small and args.wake == "default" else args.wake
     run_study(wake, mus=tuple(args.mu), alpha=math.radians(args.alpha), small=args.small, kr=not args.no_kr,
               out_dir=args.out, n_jobs=args.jobs, cache_dir=None if args.no_cache else "default",
-              progress=not args.small)
+              progress=not args.small, aircraft=args.aircraft)
 
 
 if __name__ == "__main__":

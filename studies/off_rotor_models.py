@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from aircraft import load_aircraft
 from aircraft.configs import uh60_single_rotor
 from aircraft.identification import OffRotorSettings, flight_condition, identify_off_rotor
 from aircraft.identification.off_rotor import horizontal_tail, wake_exposure, wing_under_hub
@@ -91,13 +92,16 @@ def _exposure_figure(curves, results):
 
 
 def run_study(wake=None, *, mus=(0.0, 0.1), ct=CT, settings=None, out_dir="results/off_rotor_models",
-              n_jobs=2, cache_dir="default", progress=True, verbose=True):
+              n_jobs=2, cache_dir="default", progress=True, verbose=True, aircraft=None):
     """Identify the tail and wing models at each mu; write the tables and figures.
+
+    ``aircraft``: a single-rotor configuration, shipped name or TOML file
+    (:func:`aircraft.config_files.load_aircraft`; default the UH-60-like rotor).
 
     Returns ``(gains/delays table, verification table, list of OffRotorResult)``.
     """
     t_start = time.perf_counter()
-    cfg = uh60_single_rotor()
+    cfg = uh60_single_rotor() if aircraft is None else load_aircraft(aircraft)
     settings = settings or OffRotorSettings(wake=wake or WakeSettings())
     surfaces = [horizontal_tail(cfg), wing_under_hub(cfg)]
     out = Path(out_dir)
@@ -168,6 +172,8 @@ def main(argv=None):
     parser.add_argument("--small", action="store_true",
                         help="tiny wake (20 deg, 1.5 revs, 4 elements), 8 s sweeps, hover only: a smoke test")
     parser.add_argument("--mu", type=float, nargs="+", default=None, help="advance ratios (default 0 0.1)")
+    parser.add_argument("--aircraft", default=None,
+                        help="a shipped aircraft's name or an aircraft TOML file (default: uh60_single_rotor)")
     parser.add_argument("--out", default="results/off_rotor_models")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--no-cache", action="store_true",
@@ -184,7 +190,7 @@ def main(argv=None):
         settings = OffRotorSettings(wake=wake)
         mus = args.mu or (0.0, 0.1)
     run_study(settings=settings, mus=tuple(mus), out_dir=args.out, n_jobs=args.jobs, progress=not args.small,
-              cache_dir=None if args.no_cache else "default")
+              cache_dir=None if args.no_cache else "default", aircraft=args.aircraft)
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from aircraft import identify_inflow
+from aircraft import identify_inflow, load_aircraft
 from aircraft.configs import uh60_single_rotor
 from aircraft.identification import IdentificationSettings
 from aircraft.identification.structures import SingleRotor3State
@@ -50,11 +50,16 @@ def coefficient_table(model):
 
 
 def run_study(settings=None, *, ct=0.0061, sweep_s=45.0, out_dir="results/wake_identification", n_jobs=2,
-              cache_dir="default", progress=True, verbose=True):
-    """Run the identification; return ``(coefficient table, IdentifiedModel)``."""
+              cache_dir="default", progress=True, verbose=True, aircraft=None):
+    """Run the identification; return ``(coefficient table, IdentifiedModel)``.
+
+    ``aircraft``: a single-rotor configuration, shipped name or TOML file
+    (:func:`aircraft.config_files.load_aircraft`; default the UH-60-like rotor).
+    """
     t_start = time.perf_counter()
     id_settings = IdentificationSettings(wake=settings or WakeSettings(), sweep_s=sweep_s)
-    model = identify_inflow(uh60_single_rotor(), None, SingleRotor3State(), ct=ct, settings=id_settings,
+    config = uh60_single_rotor() if aircraft is None else load_aircraft(aircraft)
+    model = identify_inflow(config, None, SingleRotor3State(), ct=ct, settings=id_settings,
                             name="UH-60 hover 3-state from our wake", n_jobs=n_jobs, cache_dir=cache_dir,
                             progress=progress, reproduce=True)
     table = coefficient_table(model)
@@ -93,13 +98,15 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--coarse", action="store_true",
                         help="15 deg steps, 2 revs of wake, 6 elements (quick look)")
+    parser.add_argument("--aircraft", default=None,
+                        help="a shipped aircraft's name or an aircraft TOML file (default: uh60_single_rotor)")
     parser.add_argument("--sweep-s", type=float, default=45.0, help="sweep record length [s]")
     parser.add_argument("--out", default="results/wake_identification")
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args(argv)
     settings = (WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
                 if args.coarse else WakeSettings())
-    run_study(settings, sweep_s=args.sweep_s, out_dir=args.out, n_jobs=args.jobs)
+    run_study(settings, sweep_s=args.sweep_s, out_dir=args.out, n_jobs=args.jobs, aircraft=args.aircraft)
 
 
 if __name__ == "__main__":

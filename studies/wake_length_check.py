@@ -24,6 +24,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from aircraft import load_aircraft
 from aircraft.configs import coaxial_compound
 from aircraft.identification.structures import Coaxial6State
 from aircraft.identification.shipped import RECIPES
@@ -39,7 +40,9 @@ SHOWN = [("theta1s_L", "lam1s_L"), ("theta1s_L", "lam1s_U"), ("theta1s_L", "lam1
          ("theta0_U", "lam0_L")]
 
 
-def run(out_dir="results/wake_length_check", small=False, n_jobs=2, cache_dir="default"):
+def run(out_dir="results/wake_length_check", small=False, n_jobs=2, cache_dir="default", aircraft=None):
+    """Run the check; ``aircraft``: a coaxial configuration with rotors U and L, shipped name or
+    TOML file (:func:`aircraft.config_files.load_aircraft`; default the coaxial compound)."""
     recipe = RECIPES["coaxial_hover_6state"]
     base, sweep_s, variants = recipe.settings.wake_settings, recipe.settings.sweep_s, VARIANTS
     w_min = recipe.settings.w_min
@@ -49,7 +52,8 @@ def run(out_dir="results/wake_length_check", small=False, n_jobs=2, cache_dir="d
         sweep_s, w_min, variants = 12.0, 3.0, {"far wake 6 rev": {"far_wake_revolutions": 6.0}}
     # the identification's seeds (its sweep k has seed k), so the base records are its own
     seeds = [Coaxial6State().excitations.index(c) for c in CONTROLS]
-    res = wake_setting_sensitivity(coaxial_compound(), variants, base=base, ct=recipe.ct, controls=CONTROLS,
+    config = coaxial_compound() if aircraft is None else load_aircraft(aircraft)
+    res = wake_setting_sensitivity(config, variants, base=base, ct=recipe.ct, controls=CONTROLS,
                                    seeds=seeds,
                                    outputs=OUTPUTS, frequencies=FREQUENCIES, sweep_s=sweep_s,
                                    amplitude=recipe.settings.amplitude, w_min=w_min,
@@ -82,9 +86,12 @@ def main(argv=None):
     parser.add_argument("--small", action="store_true", help="tiny wake, 12 s sweeps from 3 rad/s (for the tests)")
     parser.add_argument("--n-jobs", type=int, default=2, help="wake worker processes")
     parser.add_argument("--no-cache", action="store_true", help="compute the wake records afresh")
+    parser.add_argument("--aircraft", default=None,
+                        help="a shipped aircraft's name or an aircraft TOML file (default: coaxial_compound)")
     parser.add_argument("--out", default="results/wake_length_check")
     args = parser.parse_args(argv)
-    run(args.out, small=args.small, n_jobs=args.n_jobs, cache_dir=None if args.no_cache else "default")
+    run(args.out, small=args.small, n_jobs=args.n_jobs, cache_dir=None if args.no_cache else "default",
+        aircraft=args.aircraft)
 
 
 if __name__ == "__main__":

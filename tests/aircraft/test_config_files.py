@@ -248,8 +248,27 @@ def test_shipped_aircraft_are_listed_and_unknown_names_refused():
         load_shipped_aircraft("uh60")
 
 
+@pytest.mark.parametrize("name", sorted(FACTORIES))
+def test_load_aircraft_takes_a_shipped_name_a_file_or_a_configuration(name, tmp_path):
+    from aircraft.config_files import load_aircraft
+    config = FACTORIES[name]()
+    assert load_aircraft(name) == config
+    path = tmp_path / "mine.toml"
+    write_aircraft(dataclasses.replace(config, name="mine"), path)
+    assert load_aircraft(path).name == "mine" and load_aircraft(str(path)).rotors == config.rotors
+    assert load_aircraft(config) is config
+
+
+@pytest.mark.parametrize("bad, match", [("uh60", r"neither a shipped aircraft nor a TOML file; shipped: \['coax"),
+                                        ("missing.toml", "missing.toml"), (3, "got 3"), ("", "got ''")])
+def test_load_aircraft_refuses_what_is_not_an_aircraft(bad, match):
+    from aircraft.config_files import load_aircraft
+    with pytest.raises(ConfigFileError, match=match):
+        load_aircraft(bad)
+
+
 def test_the_package_face():
-    for name in ("read_aircraft", "write_aircraft", "load_shipped_aircraft", "ConfigFileError"):
+    for name in ("read_aircraft", "write_aircraft", "load_shipped_aircraft", "load_aircraft", "ConfigFileError"):
         assert name in aircraft.__all__ and hasattr(aircraft, name)
     assert issubclass(ConfigFileError, ValueError) and issubclass(ConfigFileError, ConfigError)
 

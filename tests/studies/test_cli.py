@@ -95,6 +95,21 @@ def test_results_folder_without_manifest_is_reported(tmp_path):
     assert check_results(tmp_path).status.tolist() == ["no manifest"]
 
 
+AIRCRAFT_STUDIES = ("wake-identification", "forward-flight-identification", "off-rotor-models",
+                    "coaxial-wake-identification", "wake-length-check")
+
+
+def test_studies_take_the_aircraft_from_the_command_line():
+    for command in AIRCRAFT_STUDIES:
+        shown = _rotorwake(command, "--help")
+        assert shown.returncode == 0 and "--aircraft" in shown.stdout, command
+    # a name that is neither shipped nor a file stops the run before any wake work, naming the choices
+    bad = _rotorwake("wake-identification", "--aircraft", "my_heli", "--out", "/nonexistent/never")
+    assert bad.returncode != 0
+    assert "'my_heli' is neither a shipped aircraft nor a TOML file" in bad.stderr
+    assert "uh60_single_rotor" in bad.stderr
+
+
 def test_unknown_command_is_an_error():
     assert _rotorwake("no-such-study").returncode == 2
 
