@@ -146,7 +146,7 @@ STUDIES = {s.command: s for s in (
           6.0, default_out="results/wake_length_check", cached_note="wake runs cached under .cache/wake"),
     Study("wake-geometry-check", "studies.wake_geometry_check",
           "hover tip-vortex trajectory of the single rotor (contraction, descent) against Landgrebe's "
-          "measured generalised wake", 0.6,
+          "measured generalised wake", 2.0,
           default_out="results/wake_geometry_check"),
     Study("roll-design-sensitivity", "studies.roll_design_sensitivity",
           "which cyclic each stick drives (control phase), 100/200 kt lift-offset trims, case A against the "

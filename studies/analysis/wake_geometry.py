@@ -9,10 +9,9 @@
 
 Reference: Landgrebe, A. J., "The Wake Geometry of a Hovering Helicopter Rotor
 and Its Influence on Rotor Performance", Journal of the American Helicopter
-Society 17(4), 1972, pp. 3-15 -- an empirical fit to smoke-flow visualisations
-of model rotors (one to eight blades, twist 0 to -16 deg, thrust coefficients to
-about 0.009), in the form given by Leishman, Principles of Helicopter
-Aerodynamics, 2nd ed., 2006, Sec. 10.7:
+Society 17(4), 1972 -- an empirical fit to smoke-flow visualisations of model
+rotors of several blade numbers, twists and aspect ratios, in the form given by
+Leishman, Principles of Helicopter Aerodynamics, 2nd ed., 2006, Sec. 10.7:
 
 * radial contraction ``r/R = A + (1 - A) exp(-Lambda psi_w)``, ``A = 0.78``,
   ``Lambda = 0.145 + 27 C_T``;
@@ -172,7 +171,8 @@ class WakeGeometry:
         (ours minus Landgrebe), ``z_ours``, ``z_landgrebe``, ``dz`` [-, per R].
     summary : pandas.DataFrame
         One row per thrust: r/R at the first blade passage and averaged over the
-        far window (ours, Landgrebe's), k1 and k2 fitted to our markers and
+        far window (ours, Landgrebe's), the mean inflow ratio ``lam0`` over the
+        averaging revolutions [-], k1 and k2 fitted to our markers and
         Landgrebe's, the rotor's sigma, N_b, twist [deg] and the wall time [s].
     """
 
@@ -317,7 +317,7 @@ def tip_vortex_geometry(config, ct_values, settings=None, *, settle_revs=8, aver
         # the markers start at the end of the rigid near wake; before it the wake is prescribed
         k1, k2 = _fit_rates(age, z, zb, far_hi)
         k1_l, k2_l = landgrebe_descent_rates(ct, sigma, rot.nb, tw)
-        summary.append({"ct": ct, "ct_trimmed": out["CT"], "n_blades": rot.nb, "sigma": sigma, "twist_deg": tw,
+        summary.append({"ct": ct, "ct_trimmed": out["CT"], "lam0": out["lam0"], "n_blades": rot.nb, "sigma": sigma, "twist_deg": tw,
                         "first_age_deg": math.degrees(age[0]),
                         "r_blade_passage_ours": float(np.interp(zb, age, r)),
                         "r_blade_passage_landgrebe": float(landgrebe_radius(zb, ct)),

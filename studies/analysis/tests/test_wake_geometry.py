@@ -89,6 +89,8 @@ def test_end_to_end_on_a_coarse_wake(coarse_geometry):
     assert 0.7 < s.r_far_ours < 1.0
     assert t.z_ours.iloc[-1] < -0.1
     assert s.k2_ours < 0 and s.k2_landgrebe < 0
+    # the trimmed inflow is of momentum-theory size: kappa sqrt(C_T / 2) with kappa in 1-1.5
+    assert 1.0 < s.lam0 / math.sqrt(0.006 / 2) < 1.5
 
 
 def test_fitted_rates_recover_a_landgrebe_trajectory():
@@ -107,4 +109,5 @@ def test_study_small_writes_its_files(tmp_path):
     summary = pd.read_csv(tmp_path / "summary.csv")
     assert set(summary.variant) == {"default", "contracted near wake"}
     assert (tmp_path / "trajectory.png").stat().st_size > 0
+    assert list(pd.read_csv(tmp_path / "sensitivity.csv").change) == ["none", "core radius 3x"]
     assert len(pd.read_csv(tmp_path / "trajectory.csv")) > 0
