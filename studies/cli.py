@@ -144,6 +144,10 @@ STUDIES = {s.command: s for s in (
     Study("wake-length-check", "studies.wake_length_check",
           "coaxial hover cyclic/collective responses on 3x the far wake and 2x the free wake",
           6.0, default_out="results/wake_length_check", cached_note="wake runs cached under .cache/wake"),
+    Study("wake-geometry-check", "studies.wake_geometry_check",
+          "hover tip-vortex trajectory of the single rotor (contraction, descent) against Landgrebe's "
+          "measured generalised wake", 2.0,
+          default_out="results/wake_geometry_check"),
     Study("roll-design-sensitivity", "studies.roll_design_sensitivity",
           "which cyclic each stick drives (control phase), 100/200 kt lift-offset trims, case A against the "
           "rotor assumptions (flap frequency, Lock number, control phase)", 6.0,
