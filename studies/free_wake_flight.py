@@ -79,12 +79,15 @@ def run_study(*, ct=0.0061, step_deg=0.5, sweep_deg=0.5, sweep_s=14.0, w_min=2.0
                                     output_names=["beta0"], settling_time=1.0).to_pandas()
             fr = fr.assign(model=model, body=body)
             bodes.append(fr)
-            # settled coning per collective over the last quarter second of the step
+            # coning per collective at the end of the step (mean of its last quarter second:
+            # the wake's blade-passage ripple); body held it has settled, free in heave not yet
             tail = st["t"] > st["t"].iloc[-1] - 0.25
             gain = float((st.loc[tail, "beta0"].mean() - st["beta0"].iloc[0]) / amp)
             rows.append({"body": body, "model": model, "trim_CT": st.attrs["trim"]["CT"],
-                         "step_beta0_per_theta0": gain,
+                         "step_beta0_per_theta0_at_2s": gain,
                          "sweep_gain_at_w_min": float(10 ** (fr["magnitude_db"].iloc[0] / 20)),
+                         "peak_rad_s": float(fr["omega"].iloc[int(np.argmax(fr["magnitude_db"]))]),
+                         "peak_db": float(fr["magnitude_db"].max()),
                          "phase_minus_90_rad_s": phase_crossing(fr),
                          "mean_coherence": float(fr["coherence"].mean()), "wall_s": wall})
             if verbose:

@@ -27,7 +27,7 @@ class ConstantWake:
         self.theta0_trim = theta0_trim
         self.log = []
 
-    def trim(self, ct):
+    def trim(self, ct, settle_revs=3):
         self.controls["theta0"] = self.theta0_trim
         return SimpleNamespace(controls=dict(self.controls),
                                outputs={"lam0": self.lam[0], "lam1s": self.lam[1], "lam1c": self.lam[2]})
@@ -105,6 +105,8 @@ def test_input_validation():
         fly_inflow_model(cfg, PrescribedInflow(LAM), 3.0, 0.1)
     with pytest.raises(ValueError, match="free_flapping"):
         fly_free_wake(cfg, step_input, 0.1, wake=ConstantWake(free_flapping=True), progress=False)
+    with pytest.raises(ValueError, match="settle_revs"):
+        fly_free_wake(cfg, step_input, 0.1, wake=ConstantWake(), settle_revs=0, progress=False)
     with pytest.raises(ValueError, match="rotor speed"):
         fly_free_wake(cfg, step_input, 0.1, wake=ConstantWake(omega=30.0), progress=False)
     with pytest.raises(ValueError, match="single-rotor"):
