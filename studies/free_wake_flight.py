@@ -22,6 +22,7 @@ import pandas as pd
 
 from aircraft import load_aircraft
 from aircraft.configs import uh60_single_rotor
+from aircraft.helicopter.rotor_stand import ShaftFixedRotors
 from aircraft.identification.free_wake_flight import fly_free_wake, fly_inflow_model
 from aircraft.inflow import IdentifiedInflow, PittPeters
 from aircraft.inflow.model_files import load_record
@@ -32,11 +33,15 @@ MODELS = ("free wake", "identified 3-state", "Pitt-Peters")
 BODIES = ("held", "heave")
 
 
+def _inflow(model):
+    return PittPeters() if model == "Pitt-Peters" else IdentifiedInflow.from_record(load_record("uh60_hover_3state"))
+
+
 def _fly(model, config, collective, duration, body, ct, wake_settings):
     if model == "free wake":
         return fly_free_wake(config, collective, duration, body=body, ct=ct, wake_settings=wake_settings,
                              progress=False)
-    inflow = PittPeters() if model == "Pitt-Peters" else IdentifiedInflow.from_record(load_record("uh60_hover_3state"))
+    inflow = _inflow(model)
     dt = wake_settings.azimuth_step / config.rotors[0].omega     # the wake's step: same grid for all
     return fly_inflow_model(config, inflow, collective, duration, body=body, ct=ct, dt=dt)
 
@@ -49,6 +54,30 @@ def phase_crossing(resp, target=-90.0):
             f = (ph[k] - target) / (ph[k] - ph[k + 1])
             return float(np.exp(np.log(w[k]) + f * (np.log(w[k + 1]) - np.log(w[k]))))
     return float("nan")
+
+
+def linear_coning_modes(config, inflow, ct):
+    """Coning modes of the shaft-fixed rotor linearised with an inflow model.
+
+    Returns ``(natural frequency [rad/s], damping ratio)`` of the oscillatory mode
+    and the rate [1/s] of the real mode with the largest coning in their
+    eigenvectors (each scaled to its largest entry), and the frequency [rad/s] of
+    the peak of the linear beta0/theta0 response (1 to 100 rad/s, 2000 points).
+    """
+    stand = ShaftFixedRotors(config, inflow)
+    stand.trim(ct)
+    sys = stand.linearize()
+    w, v = np.linalg.eig(sys.A)
+    share = np.abs(v[list(sys.state_labels).index("beta0")]) / np.abs(v).max(axis=0)
+    osc = [k for k in range(w.size) if w[k].imag > 1e-9]
+    real = [k for k in range(w.size) if abs(w[k].imag) <= 1e-9]
+    k_osc = max(osc, key=lambda k: share[k])
+    k_real = max(real, key=lambda k: share[k])
+    sub = sys[list(sys.output_labels).index("beta0"), list(sys.input_labels).index("theta0")]
+    grid = np.logspace(0, 2, 2000)
+    mag = np.abs(sub(1j * grid))
+    return (float(abs(w[k_osc])), float(-w[k_osc].real / abs(w[k_osc])), float(-w[k_real].real),
+            float(grid[np.argmax(mag)]))
 
 
 def run_study(*, ct=0.0061, step_deg=0.5, sweep_deg=0.5, sweep_s=14.0, w_min=2.0, w_max=60.0,
@@ -90,6 +119,12 @@ def run_study(*, ct=0.0061, step_deg=0.5, sweep_deg=0.5, sweep_s=14.0, w_min=2.0
                          "peak_db": float(fr["magnitude_db"].max()),
                          "phase_minus_90_rad_s": phase_crossing(fr),
                          "mean_coherence": float(fr["coherence"].mean()), "wall_s": wall})
+            if body == "held" and model != "free wake":
+                # the linearised shaft-fixed rotor with the same inflow model: an independent
+                # reading of the mode the sweep's peak shows
+                wn, zeta, rate, peak = linear_coning_modes(config, _inflow(model), ct)
+                rows[-1].update(linear_coning_mode_rad_s=wn, linear_coning_damping=zeta, linear_peak_rad_s=peak,
+                                linear_inflow_coning_real_mode_1_s=rate)
             if verbose:
                 print(f"{body:5s} {model:20s} done in {wall:.0f} s", flush=True)
     summary = pd.DataFrame(rows)
