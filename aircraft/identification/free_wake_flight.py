@@ -320,9 +320,10 @@ def fly_free_wake(config, collective, duration, *, body="held", ct=None, wake=No
         The aircraft's rotor resolution (default 8 span points, 1 azimuth).
     settle_revs : int
         Revolutions the wake is marched before its trim's first update
-        (:func:`aircraft.wake.trim.trim_wake`); its default of 3 leaves the
-        single rotor's wake settling by about a percent of C_T in the first
-        revolution after the trim, 8 does not.
+        (:func:`aircraft.wake.trim.trim_wake`). The trim's own default leaves
+        the single rotor's wake still settling in the first revolution after
+        it (a start transient in C_T and lam0 larger than the blade-passage
+        ripple, measured); the default here does not.
     progress : bool
         tqdm progress bar over the wake steps.
 
