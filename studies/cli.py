@@ -135,6 +135,10 @@ STUDIES = {s.command: s for s in (
           "rotor-level truth check: free wake with free flapping vs blade-element rotor with "
           "identified / Dynamic-Climb / Pitt-Peters inflow (§7.2.2)", 10.0,
           default_out="results/rotor_truth_check", cached_note="wake runs cached under .cache/wake"),
+    Study("free-wake-flight", "studies.free_wake_flight",
+          "the free wake flown with the aircraft (MFW only): hover coning response to collective, shaft "
+          "fixed and free in heave, against the identified 3-state and Pitt-Peters (Figs. 7.1-7.2)", 5.0,
+          default_out="results/free_wake_flight"),
     Study("forward-flight-identification", "studies.forward_flight_identification",
           "single rotor over mu = 0-0.3 (Eqs. 4.7-4.8 structure) vs Pitt-Peters, and K_R(omega) in hover "
           "(§4.4, Figs. 4.34-4.36, §4.7)", 20.0, default_out="results/forward_flight_identification",
