@@ -29,11 +29,12 @@ Cramer-Rao bounds of the shipped model (absolute), and each model's J_ave on the
 other's data (:func:`flightid.evaluate_model` style cost of the fixed model).
 
 Run: ``.venv/bin/python benchmarks/coaxial_12state.py [--jobs 2] [--cache DIR]
-[--excitation multisine --duration 30 --records 2 --amplitude 0.02]``.
+[--excitation multisine --duration 36 --records 2 --amplitude 0.02]``.
 """
 import argparse
 import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -67,7 +68,8 @@ def main(argv=None):
     parser.add_argument("--cache", default=None, help="wake cache folder (default: a fresh temporary one)")
     parser.add_argument("--excitation", choices=("sweeps", "multisine"), default="sweeps",
                         help="one sweep per control (default) or orthogonal multisines")
-    parser.add_argument("--duration", type=float, default=30.0, help="multisine record length [s]")
+    parser.add_argument("--duration", type=float, default=36.0,
+                        help="multisine record length [s] (>= 35.4 s resolves w_min = 0.7 rad/s)")
     parser.add_argument("--records", type=int, default=2, help="multisine records marched in parallel")
     parser.add_argument("--amplitude", type=float, default=0.02, help="multisine peak [rad]")
     parser.add_argument("--fit-cache", default=None,
@@ -145,6 +147,13 @@ def compare_with_shipped(model, shipped):
     return df
 
 
+def _cpu_seconds():
+    """CPU time [s] of this process and of its children that have finished (pool workers)."""
+    import resource
+    me, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+
 def run_multisine(args):
     """The multisine data set of the shipped 12-state with tilt inputs, timed, fitted, compared."""
     from aircraft.identification import identify_inflow_multisine
@@ -167,10 +176,11 @@ def run_multisine(args):
              for k, g in enumerate(groups)] + data_set_specs(structure, s)[-2:]
     with tempfile.TemporaryDirectory() as tmp:
         cache = args.cache or tmp
-        t0 = time.perf_counter()
+        cold = not any(Path(cache).glob("**/*.*"))
+        t0, cpu0 = time.perf_counter(), _cpu_seconds()
         runs = run_sweeps(config, s.wake_settings, FlightCondition(), specs,
                           trim=_trim_request(config, recipe.ct, None), n_jobs=args.jobs, cache_dir=cache)
-        t_data = time.perf_counter() - t0
+        t_data, cpu_data = time.perf_counter() - t0, _cpu_seconds() - cpu0
         omega = config.rotors[0].omega
         revs = record_revolutions({sp.name: runs[sp.name] for sp in specs}, omega)
         t1 = time.perf_counter()
@@ -180,9 +190,11 @@ def run_multisine(args):
     print(f"12-state coaxial hover data set from multisines ({structure!r}): {len(specs)} records "
           f"({ms.records} multisine records of {ms.duration:g} s, peak {ms.amplitude:g} rad, + doublet + "
           f"zero input), {sum(revs.values()):.0f} rotor revolutions marched "
-          f"({'cached' if args.cache else 'uncached'}), {args.jobs} processes")
+          f"({'uncached' if cold else 'cache not empty'}), {args.jobs} processes")
     print("  revolutions per record: " + ", ".join(f"{k} {v:.0f}" for k, v in revs.items()))
-    print(f"  wake data set (trim + runs): {t_data:.0f} s  ({sum(revs.values()) / t_data:.2f} rev/s)")
+    print(f"  wake data set (trim + runs): {t_data:.0f} s  ({sum(revs.values()) / t_data:.2f} rev/s); "
+          f"CPU {cpu_data:.0f} s in all (this process and its finished workers: the cost on idle cores, "
+          f"whatever else the machine ran)")
     print(f"  12-state with tilt inputs from the multisine records (staged fit + reduction + verification): "
           f"{t_fit:.0f} s (J_ave {model.J_ave:.1f})")
     shipped, j_shipped = _shipped_parameters("coaxial_hover_12state_tilt")

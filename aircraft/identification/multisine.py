@@ -189,7 +189,7 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     """
     from tqdm.auto import tqdm
     from aircraft.wake import FlightCondition, MultisineSpec, SweepSpec, run_sweeps
-    from flightid.errors import SingularInputError
+    from flightid.errors import DataError, SingularInputError
     from flightid import joint_input_output
 
     t_start = time.perf_counter()
@@ -250,6 +250,10 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     except SingularInputError as err:
         stages.close()
         raise PipelineError(f"the multisine record cannot separate the inputs: {err}") from err
+    except DataError as err:
+        stages.close()
+        raise PipelineError(f"the multisine records ({multisine.duration:g} s) do not resolve the band "
+                            f"from w_min = {s.w_min:g} rad/s: {err}") from err
     stages.update()
     omega = float(config.rotors[0].omega)
     staged, reduction, result, check, floor, start_log, fit_start = _fit_and_verify(

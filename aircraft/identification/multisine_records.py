@@ -85,10 +85,10 @@ def record_responses(records, signals, *, w_min, w_max, order=None):
     Examples
     --------
     >>> import numpy as np, pandas as pd
-    >>> t = np.arange(0, 20, 0.01)
+    >>> t = np.arange(0, 40, 0.01)
     >>> u = np.sin(1.3 * t) + np.sin(4.1 * t)
     >>> df = pd.DataFrame({"t": t, "a": u, "y": 2 * u})
-    >>> r = record_responses([(df, ["a"])], ["y"], w_min=1.0, w_max=5.0)
+    >>> r = record_responses([(df, ["a"])], ["y"], w_min=2.0, w_max=5.0)
     >>> r.input_labels, bool(np.allclose(abs(r.frdata[0, 0]), 2.0, rtol=1e-6))
     (['a'], True)
     """

@@ -133,3 +133,24 @@ def test_more_records_than_controls_is_refused(captured_specs):
     with pytest.raises(PipelineError, match="records"):
         identify_inflow_multisine(coaxial_compound(), None, "coaxial_6state", ct=0.0096,
                                   multisine=MultisineSettings(records=7), progress=False)
+
+
+def test_a_record_too_short_for_the_band_is_a_pipeline_error(monkeypatch):
+    import math
+    from aircraft.configs import uh60_single_rotor
+    from aircraft.identification import IdentificationSettings
+    from aircraft.wake import WakeSettings
+    from tests.aircraft.identification._simulated_wake import simulated_runs
+
+    def fake(config, settings, flight, specs, **kwargs):
+        omega = float(config.rotors[0].omega)
+        return simulated_runs(specs, settings.azimuth_step / omega, omega, np.eye(3), np.eye(3),
+                              np.zeros((3, 3)), noise=0.01)
+
+    monkeypatch.setattr(wake_pkg, "run_sweeps", fake)
+    coarse = IdentificationSettings(wake=WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5,
+                                                      n_elements=5))
+    # 20 s cannot hold two cycles of 0.7 rad/s in its longest window (>= 35.9 s needed)
+    with pytest.raises(PipelineError, match="w_min"):
+        identify_inflow_multisine(uh60_single_rotor(), None, "single_rotor_3state", ct=0.0061, settings=coarse,
+                                  multisine=MultisineSettings(duration=20.0), n_jobs=1, progress=False)
