@@ -4,7 +4,8 @@
 
     pipeline.py          identify_inflow: trim -> sweeps -> responses -> joint input-output
                          -> fit -> reduce -> verify; IdentificationSettings, IdentifiedModel
-    multisine.py         identify_inflow_multisine: the same from one orthogonal-multisine record
+    multisine.py         identify_inflow_multisine: the same from orthogonal-multisine records
+    multisine_records.py   the controls split over parallel records, their responses assembled
     structures/          the inflow structures and their one registry (STRUCTURES, get_structure)
     conditions.py        flight_condition: the wind-tunnel condition of an advance ratio or a speed
     forward_flight.py    identify_forward_flight (single rotor), pitt_peters_forward

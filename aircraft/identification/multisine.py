@@ -1,4 +1,4 @@
-"""Inflow identification from ONE multisine record of all swashplate controls.
+"""Inflow identification from multisine records of all the controls at once.
 
 :func:`identify_inflow_multisine` is :func:`aircraft.identification.identify_inflow`
 with the one-control-at-a-time sweeps replaced by a single record in which every
@@ -7,7 +7,10 @@ multisines (:class:`aircraft.wake.MultisineSpec`); the MIMO response comes from
 the cross-spectral matrix (:func:`flightid.mimo_response`) and the rest of the
 pipeline (joint input-output, data-driven start, fit, reduction, doublet
 verification beside the noise floor) is the same. This is the dissertation's
-recommendation 6: fewer wake revolutions per identification.
+recommendation 6: fewer wake revolutions per identification. A structure with
+flap-rate inputs is excited on its prescribed tip-path-plane inputs as well, and
+the controls may be divided between several records marched in parallel
+(``MultisineSettings.records``, :mod:`aircraft.identification.multisine_records`).
 
 ::
 
@@ -26,6 +29,7 @@ import pandas as pd
 
 from .pipeline import (PIPELINE_VERSION, IdentificationSettings, IdentifiedModel, PipelineError, _code_version, _fit_and_verify, _trim_request, identification_hash)
 from aircraft.inflow.model_files import SCHEMA
+from .multisine_records import record_responses, split_controls
 from .structures import get_structure
 
 __all__ = ["MultisineSettings", "identify_inflow_multisine", "record_revolutions"]
@@ -48,7 +52,23 @@ class MultisineSettings:
     trim_start : float
         Seconds at trim before the multisine [s].
     seed : int
-        Seed of the start phases.
+        Seed of the start phases (record ``k`` of several uses ``seed + k``).
+    records : int
+        Records the excited controls are divided between (dealt out in turn,
+        :func:`aircraft.identification.multisine_records.split_controls`), marched
+        in parallel; each is an orthogonal multisine of its own controls. More
+        records: fewer controls per record (more harmonics each, lower peak
+        factors) for more revolutions in all.
+
+    Raises
+    ------
+    ValueError
+        A field of the wrong type or out of range.
+
+    Examples
+    --------
+    >>> MultisineSettings(duration=30.0, records=2).records
+    2
     """
 
     duration: float = 90.0
@@ -57,6 +77,42 @@ class MultisineSettings:
     fade: float = 0.5
     trim_start: float = 0.5
     seed: int = 0
+    records: int = 1
+
+    def __post_init__(self):
+        for name in ("duration", "amplitude"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value) \
+                    or value <= 0:
+                raise ValueError(f"MultisineSettings.{name} must be a positive finite number, got {value!r}")
+        if self.spectrum not in ("flat", "log"):
+            raise ValueError(f"MultisineSettings.spectrum must be 'flat' or 'log', got {self.spectrum!r}")
+        for name in ("seed", "records"):
+            value = getattr(self, name)
+            if (value is not None or name == "records") and (
+                    isinstance(value, bool) or not isinstance(value, (int, np.integer))):
+                raise ValueError(f"MultisineSettings.{name} must be an integer, got {value!r}")
+        if self.records < 1:
+            raise ValueError(f"MultisineSettings.records must be at least 1, got {self.records!r}")
+
+    def hash_fields(self):
+        """The fields that key the identification (``records`` only when it is not 1).
+
+        Returns
+        -------
+        dict
+            Field name to value; with one record exactly the fields of the
+            settings before ``records`` existed, so their hashes are unchanged.
+
+        Examples
+        --------
+        >>> "records" in MultisineSettings().hash_fields()
+        False
+        """
+        fields = dict(self.__dict__)
+        if self.records == 1:
+            del fields["records"]
+        return fields
 
 
 def record_revolutions(runs, omega):
@@ -93,9 +149,9 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     condition : aircraft.wake.FlightCondition, optional
         Flight condition (default hover).
     structure : InflowStructure or str
-        Model structure (its ``controls`` are all excited in the one record; a
-        model with flap-rate inputs is refused: they need prescribed tip-path-plane
-        excitation).
+        Model structure (its ``controls`` are all excited; a model with flap-rate
+        inputs is excited on all of its ``excitations``: the swashplate controls
+        and the prescribed tip-path-plane inputs).
     ct : float, optional
         Trim thrust coefficient of the system (coaxial: split equally, torques balanced).
     trim : dict, optional
@@ -105,7 +161,10 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
         too), fit, reduction and verification settings; ``sweep_s`` and
         ``amplitude`` are not used.
     multisine : MultisineSettings, optional
-        The multisine record (default: 90 s, 0.02 rad peak, log spectrum).
+        The multisine record(s) (default: one record, 90 s, 0.02 rad peak, log
+        spectrum); with ``records > 1`` the excited controls are divided between
+        that many records marched in parallel, and each control's response
+        comes from the record that excites it.
     name : str, optional
         Name of the model.
     n_jobs : int
@@ -125,13 +184,13 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     Raises
     ------
     PipelineError
-        Trim failure, missing signals, flap-rate inputs, or inputs the record
-        cannot separate.
+        Missing signals, fewer excitations than inputs, more records than
+        excited controls, or inputs a record cannot separate.
     """
     from tqdm.auto import tqdm
     from aircraft.wake import FlightCondition, MultisineSpec, SweepSpec, run_sweeps
-    from flightid.errors import SingularInputError
-    from flightid import joint_input_output, mimo_response
+    from flightid.errors import DataError, SingularInputError
+    from flightid import joint_input_output
 
     t_start = time.perf_counter()
     settings = settings or IdentificationSettings()
@@ -144,19 +203,30 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     if len(rotor_names) != len(structure.rotors) or (len(rotor_names) > 1 and rotor_names != structure.rotors):
         raise PipelineError(f"structure {structure.key} is for rotors {structure.rotors}; "
                             f"the configuration has {rotor_names}")
+    # a structure with flap-rate inputs needs the prescribed tip-path-plane inputs too
     controls = list(structure.controls)
     if len(controls) < len(structure.inputs):
+        controls = list(structure.excitations)
+    if len(controls) < len(structure.inputs):
         raise PipelineError(f"{structure.key} has {len(structure.inputs)} inputs but {len(controls)} "
-                            "swashplate controls: flap-rate inputs need prescribed tip-path-plane excitation")
+                            "excitations: the joint input-output needs one independent excitation per input")
+    if multisine.records > len(controls):
+        raise PipelineError(f"multisine.records ({multisine.records}) exceeds the {len(controls)} excited "
+                            f"controls {controls}")
     trim_req = _trim_request(config, ct, trim)
     digest, payload = identification_hash(config, condition, structure, settings, trim=trim_req)
-    payload = {**payload, "excitation": {"kind": "orthogonal_multisine", **multisine.__dict__}}
+    payload = {**payload, "excitation": {"kind": "orthogonal_multisine", **multisine.hash_fields()}}
     from aircraft.provenance import settings_hash
     digest = settings_hash(payload, digits=16)
     s = settings
-    ms_spec = MultisineSpec(tuple(controls), amplitude=multisine.amplitude, duration=multisine.duration,
-                            w_min=s.w_min, w_max=s.w_max, spectrum=multisine.spectrum, fade=multisine.fade,
-                            trim_start=multisine.trim_start, seed=multisine.seed)
+    groups = split_controls(controls, multisine.records)
+    # one record keeps its default label (the cache key of the runs made before records existed)
+    ms_specs = [MultisineSpec(group, amplitude=multisine.amplitude, duration=multisine.duration,
+                              w_min=s.w_min, w_max=s.w_max, spectrum=multisine.spectrum, fade=multisine.fade,
+                              trim_start=multisine.trim_start,
+                              seed=None if multisine.seed is None else multisine.seed + k,
+                              label="" if len(groups) == 1 else f"multisine_{k + 1}of{len(groups)}")
+                for k, group in enumerate(groups)]
     # the same verification and noise-floor records as identify_inflow (shared cache entries)
     dbl_control = s.doublet_control or controls[0]
     doublet_spec = SweepSpec(dbl_control, kind="doublet", amplitude=s.doublet_amplitude, duration=s.doublet_s,
@@ -164,31 +234,33 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     zero_spec = SweepSpec(dbl_control, kind="sine", amplitude=0.0, duration=s.noise_floor_s, w_min=1.0,
                           label="zero_input")
     stages = tqdm(total=4, desc=f"identify {structure.key} (multisine)", disable=not progress)
-    runs = run_sweeps(config, s.wake_settings, condition, [ms_spec, doublet_spec, zero_spec], trim=trim_req,
+    runs = run_sweeps(config, s.wake_settings, condition, [*ms_specs, doublet_spec, zero_spec], trim=trim_req,
                       n_jobs=n_jobs, cache_dir=cache_dir, progress=progress)
     wake_trim = runs["trim"]
     stages.update()
-    df = runs[ms_spec.name]
     signals = structure.inputs + structure.outputs
-    missing = [c for c in signals + controls if c not in df]
+    missing = sorted({c for spec in ms_specs for c in signals + list(spec.controls) if c not in runs[spec.name]})
     if missing:
         stages.close()
         raise PipelineError(f"the wake record lacks signals {missing}")
-    y = (df[signals] - df[signals].iloc[0]).to_numpy()
-    u = (df[controls] - df[controls].iloc[0]).to_numpy()
     try:
-        measured = mimo_response(df["t"].to_numpy(), u, y, w_min=s.w_min, w_max=s.w_max,
-                                 input_names=controls, output_names=signals)
+        measured = record_responses([(runs[spec.name], spec.controls) for spec in ms_specs], signals,
+                                    w_min=s.w_min, w_max=s.w_max, order=controls)
         responses = joint_input_output(measured.select(structure.outputs), measured.select(structure.inputs))
     except SingularInputError as err:
         stages.close()
         raise PipelineError(f"the multisine record cannot separate the inputs: {err}") from err
+    except DataError as err:
+        stages.close()
+        raise PipelineError(f"the multisine records ({multisine.duration:g} s) do not resolve the band "
+                            f"from w_min = {s.w_min:g} rad/s: {err}") from err
     stages.update()
     omega = float(config.rotors[0].omega)
     staged, reduction, result, check, floor, start_log, fit_start = _fit_and_verify(
         structure, responses, runs, doublet_spec, zero_spec, wake_trim, omega, s, progress, stages)
     dt = s.wake_settings.azimuth_step / omega
-    excitation = ms_spec.multisine(dt)
+    excitations = [spec.multisine(dt) for spec in ms_specs]
+    by_control = {c: (ex, j) for spec, ex in zip(ms_specs, excitations) for j, c in enumerate(spec.controls)}
     provenance = {"source": "aircraft.identification.identify_inflow_multisine", "schema": SCHEMA,
                   "starts": start_log,
                   "pipeline": PIPELINE_VERSION, "code_version": _code_version(),
@@ -196,9 +268,11 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
                   "wall_s": round(time.perf_counter() - t_start, 1),
                   "config": getattr(config, "name", repr(config)[:60]),
                   "revolutions": record_revolutions({k: v for k, v in runs.items() if k != "trim"}, omega),
-                  "excitation": {"harmonics_per_control": [int(k.size) for k in excitation.harmonics],
-                                 "relative_peak_factor": [float(r) for r in excitation.relative_peak_factor],
-                                 "period_s": float(excitation.period)}}
+                  "excitation": {"harmonics_per_control": [int(by_control[c][0].harmonics[by_control[c][1]].size)
+                                                           for c in controls],
+                                 "relative_peak_factor": [float(by_control[c][0].relative_peak_factor[by_control[c][1]])
+                                                          for c in controls],
+                                 "period_s": float(excitations[0].period)}}
     return IdentifiedModel(name=name or f"{structure.key} from one multisine record", structure=structure,
                            fit=result, reduction=reduction, responses=responses, verification=check,
                            noise_floor=floor, trim=wake_trim, omega=omega, settings=s, settings_hash=digest,
