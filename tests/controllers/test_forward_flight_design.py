@@ -71,3 +71,22 @@ def test_design_grades_the_regime_asked_for_and_hover_stays_the_default():
 def test_unknown_speed_is_named():
     with pytest.raises(ValueError, match="speed"):
         design_multi_axis(_roll_plant(), axes=["roll"], settings=FAST, progress=False, speed="cruise")
+
+
+def test_sideslip_yaw_channel_reads_the_nose_angle_from_the_flight_path():
+    from aircraft.helicopter.hold import sideslip_yaw_channel
+    # v_dot = -0.5 v + 0.2 r + 2 delta_ped, r_dot = 0.3 v - r + 4 delta_ped, psi_dot = r; V = 20 m/s
+    A = [[-0.5, 0.2, 0.0], [0.3, -1.0, 0.0], [0.0, 1.0, 0.0]]
+    B = [[2.0], [4.0], [0.0]]
+    sys = control.ss(A, B, np.eye(3), 0, states=["v", "r", "psi"], inputs=["delta_ped"], outputs=["v", "r", "psi"])
+    out = sideslip_yaw_channel(sys, 20.0)
+    # by hand: -v_dot/V = (0.5 v - 0.2 r - 2 delta_ped)/20; -v/V = -v/20; v unchanged. Exact decimals: 1e-15
+    np.testing.assert_allclose(out.C, [[1, 0, 0], [0.025, -0.01, 0], [-0.05, 0, 0]], atol=1e-15)
+    np.testing.assert_allclose(out.D, [[0.0], [-0.1], [0.0]], atol=1e-15)
+    np.testing.assert_array_equal(out.A, sys.A)
+    assert list(out.output_labels) == ["v", "r", "psi"]
+    for bad in (0.0, -5.0, float("nan"), True):
+        with pytest.raises(ValueError, match="speed"):
+            sideslip_yaw_channel(sys, bad)
+    with pytest.raises(ValueError, match="lacks"):
+        sideslip_yaw_channel(control.ss(A, B, np.eye(3), 0, states=["u", "r", "psi"], outputs=["u", "r", "psi"]), 20.0)
