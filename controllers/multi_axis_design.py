@@ -480,7 +480,8 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         aircraft with unstable modes that only another axis can stabilise (e.g. the
         pitch-heave divergence at speed, which no roll gains can remove) gives every
         axis a design plant whose closed loop can be stable; ``start_gains`` must then
-        stabilise the aircraft together.
+        stabilise the aircraft together. An axis whose DMO then finds no gains meeting
+        every spec keeps its current gains (not the DMO's best-scoring infeasible ones).
     crossover_start : dict, optional
         Axis -> first crossover boundary [rad/s] (default :data:`DEFAULT_CROSSOVER_START`).
     drb_start : float
@@ -590,7 +591,9 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
                 except InfeasibleDesignError as exc:
                     # say so, keep the best-scoring gains, and let the final table name the unmet specs
                     res = None
-                    new = exc.result.design if exc.result is not None else design
+                    # start_closed: the current gains are known to stabilise the aircraft; the DMO's
+                    # best-scoring infeasible gains need not, so the current ones are kept
+                    new = exc.result.design if exc.result is not None and not start_closed else design
                     msg = (f"no gains meet every {a} spec at the starting boundaries (crossover "
                            f"{wc_start:.3g} rad/s); unmet: {', '.join(exc.unmet)}")
             results[a], messages[a] = res, msg

@@ -80,9 +80,11 @@ HELD = ("u", "psi")
 #: order of the sequential loop closure: pitch first, the axis that removes the pitch-heave divergence
 AXES = ("pitch", "roll", "heave", "yaw")
 #: gains every loop is closed at from the first sweep (start_closed): together they stabilise the
-#: aircraft (checked: every feedback pole in the left half plane); heave gains per metre are small
-START_GAINS = {"pitch": PIDGains(0.3, 0.1, 0.05), "roll": PIDGains(0.3, 0.1, 0.05),
-               "yaw": PIDGains(1.0, 0.3, 0.1), "heave": PIDGains(0.003, 0.0003, 0.003)}
+#: aircraft with every mode of 0.5-4 rad/s damped above the EigDpG1 Level 1 line (0.35), so that no
+#: axis starts on a plant whose other loops leave a whole-aircraft spec unmet (found by a seeded
+#: random search over the pitch and roll gains; heave gains per metre are small)
+START_GAINS = {"pitch": PIDGains(0.47, 0.48, 0.28), "roll": PIDGains(0.17, 0.079, 0.054),
+               "yaw": PIDGains(1.0, 0.3, 1.0), "heave": PIDGains(0.003, 0.0003, 0.003)}
 
 
 def forward_flight_plant(speed=SPEED):
@@ -104,9 +106,9 @@ def skipped_specs(regime):
     rows = []
     for axis in ("roll", "pitch", "yaw", "heave"):
         for s in specs_for(axis, speed=regime, missing="keep"):
-            if not s.available:
-                rows.append({"axis": axis, "spec": s.name, "description": s.description,
-                             "why": f"needs {s.missing_input}" if s.missing_input else s.source})
+            # the OLOP's missing input (actuator limits) is supplied by the design: not skipped
+            if not s.available and not s.missing_input:
+                rows.append({"axis": axis, "spec": s.name, "description": s.description, "why": s.source})
     return pd.DataFrame(rows)
 
 

@@ -90,3 +90,28 @@ def test_sideslip_yaw_channel_reads_the_nose_angle_from_the_flight_path():
             sideslip_yaw_channel(sys, bad)
     with pytest.raises(ValueError, match="lacks"):
         sideslip_yaw_channel(control.ss(A, B, np.eye(3), 0, states=["u", "r", "psi"], outputs=["u", "r", "psi"]), 20.0)
+
+
+def _unstable_pitch(c=0.3):
+    # roll p/delta_lat = 5/(s + 1.5); pitch q/delta_lon = -4/(s - 0.5), a divergence only pitch can remove;
+    # symmetric rate coupling c; phi, theta integrate p, q
+    A = np.zeros((4, 4))
+    A[0, 0], A[1, 0], A[2, 2], A[3, 2] = -1.5, 1.0, 0.5, 1.0
+    A[0, 2] = A[2, 0] = c
+    B = np.zeros((4, 2))
+    B[0, 0], B[2, 1] = 5.0, -4.0
+    return control.ss(A, B, np.eye(4), 0, inputs=["delta_lat", "delta_lon"], outputs=["p", "phi", "q", "theta"])
+
+
+def test_start_closed_designs_an_axis_on_the_aircraft_its_partner_stabilises():
+    plant = _unstable_pitch()
+    # pitch alone at K_phi 0.3, K_p 0.5: s (s - 0.5) + 4 (0.5 s + 0.3) = s^2 + 1.5 s + 1.2, by hand stable and
+    # damped (zeta 0.68 > the EigDpG1 Level 1 0.35), so the roll DMO meets the whole-aircraft specs
+    start = {"roll": PIDGains(0.3, 0.1, 0.05), "pitch": PIDGains(0.3, 0.0, 0.5)}
+    kw = dict(axes=["roll", "pitch"], start_gains=start, settings=FAST, progress=False, max_sweeps=1,
+              crossover_start={"roll": 1.0, "pitch": 1.0})
+    opened = design_multi_axis(plant, **kw)
+    closed = design_multi_axis(plant, start_closed=True, **kw)
+    # open pitch loop: the roll loop's plant carries the divergence, no roll gains can remove it
+    assert opened.dmo_results["roll"] is None and "EigLcG1" in opened.messages["roll"]
+    assert closed.dmo_results["roll"] is not None
