@@ -503,6 +503,22 @@ class MultiAxisEMF:
                                    outlist=[f"delta_fb_{axis}"], check_unused=False)
         return control.ss(sys.A, sys.B[:, :1], -sys.C, -sys.D[:, :1])
 
+    def feedback_poles(self, pade_order=3):
+        """Poles of the aircraft with every feedback loop closed [rad/s], the pilot-path blocks left out.
+
+        The modes of the augmented aircraft (plant, actuators, sensors, PID loops):
+        the command models, feed-forward and synchronisation blocks are prefilters
+        outside the loops, so their poles are not modes of the aircraft (what the
+        forward-flight dutch roll and spiral specs grade).
+        """
+        key = ("feedback poles", pade_order)
+        if key not in self._cache:
+            inp = [f"{x}_{a}" for a in self.axes for x in _LOOP_INPUTS]
+            fb = control.interconnect(self._blocks("feedback", pade_order=pade_order), inplist=inp,
+                                      outlist=[f"delta_mx_{a}" for a in self.axes], check_unused=False)
+            self._cache[key] = np.linalg.eigvals(fb.A)
+        return self._cache[key]
+
     def closed_loop_poles(self, pade_order=3):
         """Poles of the closed loop [rad/s]: the feedback system's and the pilot-path blocks'.
 
@@ -512,10 +528,7 @@ class MultiAxisEMF:
         """
         key = ("poles", pade_order)
         if key not in self._cache:
-            inp = [f"{x}_{a}" for a in self.axes for x in _LOOP_INPUTS]
-            fb = control.interconnect(self._blocks("feedback", pade_order=pade_order), inplist=inp,
-                                      outlist=[f"delta_mx_{a}" for a in self.axes], check_unused=False)
-            poles = [np.linalg.eigvals(fb.A)]
+            poles = [self.feedback_poles(pade_order)]
             for a in self.axes:
                 for b in self._pilot_blocks(a, pade_order):
                     if b.nstates:
@@ -574,6 +587,9 @@ class AxisView:
 
     def closed_loop_poles(self, pade_order=3):
         return self.emf.closed_loop_poles(pade_order)
+
+    def feedback_poles(self, pade_order=3):
+        return self.emf.feedback_poles(pade_order)
 
     def rate_response_system(self, pade_order=3):
         cl = self.emf.closed_loop(pade_order)

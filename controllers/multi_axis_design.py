@@ -47,6 +47,7 @@ from .actuator_limits import ActuatorLimits, full_stick, olop_point
 from .dmo import dmo
 from .dmo_settings import DMOSettings, InfeasibleDesignError
 from .emf import EMFDesign, PIDGains, _as_delayed
+from .hq.base import SPEEDS
 from .hq.selector import specs_for
 from .multi_axis import (AXIS_CHANNELS, AxisLoop, MultiAxisEMF, RateCommandModel, SignalNameError,
                          _default_command)
@@ -146,6 +147,25 @@ class AxisEMFDesign(EMFDesign):
                 poles = np.delete(poles, k)
         return poles
 
+    def feedback_poles(self, pade_order=3):
+        """Poles of the aircraft with this axis's feedback loop closed [rad/s] (no pilot-path blocks).
+
+        The eigenvalues of ``feedback(L, 1)`` (:meth:`broken_loop_statespace`): plant,
+        actuator, sensor and PID, without the command model, feed-forward and
+        synchronisation prefilters, whose poles are not modes of the aircraft.
+        What the forward-flight mode specs (dutch roll, spiral) grade.
+
+        Examples
+        --------
+        >>> import control
+        >>> plant = control.ss(control.tf([1.0], [1.0, 1.0]), inputs="delta_lat", outputs="p")
+        >>> d = AxisEMFDesign(plant, PIDGains(2.0, 0.0, 1.0), axis="roll", actuator=control.tf(1, 1),
+        ...                   sensor_delay=0.0)
+        >>> [round(float(abs(p)), 6) for p in d.feedback_poles()]   # s^2 + 2 s + 2 = 0
+        [1.414214, 1.414214]
+        """
+        return np.linalg.eigvals(control.feedback(self.broken_loop_statespace(pade_order), 1).A)
+
     def rate_response_system(self, pade_order=3):
         """Closed-loop signed rate per pilot stick as a SISO StateSpace (Padé delays).
 
@@ -233,12 +253,19 @@ def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", limits=No
             s = replace(s, level1=float(drb_min), level2=min(0.5, 0.55 * float(drb_min)))
         elif s.name == "HgtRsH1.heave":
             s = replace(s, response=_rate_system)
+        elif getattr(s, "family", "") == "forward_flight":
+            # dutch roll, spiral, phugoid: modes of the augmented aircraft, not of the pilot-path prefilters
+            s = replace(s, response=_feedback_poles)
         out.append(s)
     return out
 
 
 def _rate_system(design):
     return design.rate_response_system()
+
+
+def _feedback_poles(design):
+    return design.feedback_poles()
 
 
 def _effective_plant(plant, loops, axis, channels):
@@ -422,7 +449,7 @@ class MultiAxisResult:
 def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains=None, command_models=None,
                       actuator=None, sensor_delay=0.01, mte="all other", crossover_start=None, drb_start=0.9,
                       settings=None, later_settings=None, max_sweeps=3, gain_tolerance=0.01, progress=True,
-                      limits="hover"):
+                      limits="hover", speed="hover", start_closed=False):
     """Design the EMF loops of several axes of one MIMO aircraft against every axis's specs.
 
     Parameters
@@ -443,6 +470,18 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         Sensor delay of every loop [s].
     mte : str
         ADS-33E-PRF MTE class of the specs.
+    speed : {"hover", "forward"}
+        Flight regime of the specs, passed to :func:`controllers.specs_for`: ``"forward"``
+        selects the forward-flight charts (and drops the hover/low-speed ones) for every axis.
+    start_closed : bool
+        False (default): in the first sweep an axis not yet designed is left open. True:
+        every axis's loop is closed at its ``start_gains`` from the first sweep on (its
+        inverse plant fitted to its own response with the other loops open), so that an
+        aircraft with unstable modes that only another axis can stabilise (e.g. the
+        pitch-heave divergence at speed, which no roll gains can remove) gives every
+        axis a design plant whose closed loop can be stable; ``start_gains`` must then
+        stabilise the aircraft together. An axis whose DMO then finds no gains meeting
+        every spec keeps its current gains (not the DMO's best-scoring infeasible ones).
     crossover_start : dict, optional
         Axis -> first crossover boundary [rad/s] (default :data:`DEFAULT_CROSSOVER_START`).
     drb_start : float
@@ -476,6 +515,8 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     ------
     SignalNameError
         The plant lacks an axis's signals.
+    ValueError
+        Unknown axis or ``speed``, or ``max_sweeps`` not a positive integer.
 
     Notes
     -----
@@ -498,6 +539,8 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     if unknown or not axes or len(set(axes)) != len(axes):
         raise ValueError(f"axes must be distinct names from {list(AXIS_CHANNELS)}, got {axes}")
     MultiAxisEMF(plant, {a: AxisLoop(PIDGains(0, 0, 0), inverse_plant=control.tf(1, 1)) for a in axes})  # names
+    if speed not in SPEEDS:
+        raise ValueError(f"speed must be one of {list(SPEEDS)}, got {speed!r}")
     if not isinstance(max_sweeps, int) or max_sweeps < 1:
         raise ValueError(f"max_sweeps must be an integer >= 1, got {max_sweeps!r}")
     settings = settings or DEFAULT_SETTINGS
@@ -508,6 +551,11 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     wc0 = {**DEFAULT_CROSSOVER_START, **(crossover_start or {})}
     lims = _axis_limits(limits, axes, cms)
     loops, designs, results, messages, rows, plants = {}, {}, {}, {}, [], {}
+    if start_closed:
+        for a in axes:
+            start = AxisEMFDesign(_effective_plant(plant, {}, a, AXIS_CHANNELS), gains[a], axis=a,
+                                  command_model=cms[a], actuator=actuator, sensor_delay=sensor_delay)
+            loops[a] = AxisLoop.from_design(start)
     bar = tqdm(total=len(axes) * max_sweeps, desc="multi-axis DMO", disable=not progress)
     converged, sweep = False, 0
     for sweep in range(max_sweeps):
@@ -525,7 +573,7 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
             plants[a] = eff
             design = AxisEMFDesign(eff, gains[a], axis=a, command_model=cms[a], actuator=actuator,
                                    sensor_delay=sensor_delay)
-            factory = (lambda wc, wd, a=a: axis_specs(a, wc, wd, mte=mte, limits=lims[a]))
+            factory = (lambda wc, wd, a=a: axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed))
             ts = time.perf_counter()
             prev = results.get(a)
             # later sweeps continue locally just below the boundaries the axis reached; the full
@@ -543,7 +591,9 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
                 except InfeasibleDesignError as exc:
                     # say so, keep the best-scoring gains, and let the final table name the unmet specs
                     res = None
-                    new = exc.result.design if exc.result is not None else design
+                    # start_closed: the current gains are known to stabilise the aircraft; the DMO's
+                    # best-scoring infeasible gains need not, so the current ones are kept
+                    new = exc.result.design if exc.result is not None and not start_closed else design
                     msg = (f"no gains meet every {a} spec at the starting boundaries (crossover "
                            f"{wc_start:.3g} rad/s); unmet: {', '.join(exc.unmet)}")
             results[a], messages[a] = res, msg
@@ -568,7 +618,7 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         res = results[a]
         wc = res.crossover_boundary if res is not None else wc0[a]
         wd = res.drb_boundary if res is not None and np.isfinite(res.drb_boundary) else drb_start
-        spec_lists[a] = axis_specs(a, wc, wd, mte=mte, limits=lims[a])
+        spec_lists[a] = axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed)
         tables[a] = evaluate_specs(emf.axis_view(a), spec_lists[a])
     return MultiAxisResult(emf, designs, results, tables, spec_lists, pd.DataFrame(rows), converged, messages,
                            time.perf_counter() - t0, sweep + 1, limits=lims)

@@ -167,6 +167,10 @@ STUDIES = {s.command: s for s in (
     Study("multi-axis-hover-design-single-rotor", "studies.multi_axis_hover_design_single_rotor",
           "the same four-axis hover design and global check on the UH-60-like single rotor (Pitt-Peters)", 6.0,
           default_out="results/multi_axis_hover_design_single_rotor"),
+    Study("multi-axis-forward-flight-design", "studies.multi_axis_forward_flight_design",
+          "four-axis EMF design of the coaxial compound in forward flight (propeller trimmed, u held) against "
+          "every axis's forward-flight specs, with the hover study's HQ windows and global check", 5.0,
+          default_out="results/multi_axis_forward_flight_design"),
     Study("pitt-peters-hover-check", "studies.pitt_peters_hover_check",
           "linearised Pitt-Peters against Tables 4.1-4.2 and forward flight", 0.2,
           default_out="results/pitt_peters_hover_check"),

@@ -23,8 +23,8 @@ from .base import AXES, HQSpec, MTE_CLASSES, RegionSpec
 from .boundaries import BoundaryNotPublishedError, LevelRegions
 from .charts import family_window, spec_chart
 from .generic import ActuatorLimits
-from .selector import all_specs, specs_for
+from .selector import all_specs, flight_regime, specs_for
 from .table import spec_table
 
 __all__ = ["HQSpec", "RegionSpec", "LevelRegions", "BoundaryNotPublishedError", "ActuatorLimits",
-           "specs_for", "all_specs", "spec_table", "spec_chart", "family_window", "AXES", "MTE_CLASSES"]
+           "specs_for", "flight_regime", "all_specs", "spec_table", "spec_chart", "family_window", "AXES", "MTE_CLASSES"]

@@ -6,6 +6,9 @@ valid names.  No prefix matching: ``"tracking"`` is not an MTE class.
 """
 from __future__ import annotations
 
+import math
+import numbers
+
 from .base import AGILITIES, ATTENTIONS, AXES, SPEEDS
 from .bandwidth import bandwidth_specs
 from .boundaries import BoundaryNotPublishedError
@@ -17,9 +20,39 @@ from .heave import heave_specs
 from .large_amplitude import large_amplitude_specs
 from .quickness import quickness_specs
 
-__all__ = ["specs_for", "all_specs", "canonical_mte", "MTE_ALIASES"]
+__all__ = ["specs_for", "all_specs", "canonical_mte", "MTE_ALIASES", "flight_regime", "LOW_SPEED_LIMIT"]
 
 _MISSING = ("raise", "skip", "keep")
+#: ADS-33E-PRF's hover and low-speed regime ends at 45 kt [m/s] (1 kt = 1852/3600 m/s)
+LOW_SPEED_LIMIT = 45.0 * 1852.0 / 3600.0
+
+
+def flight_regime(speed):
+    """The ``speed`` name of :func:`specs_for` for an airspeed: hover/low speed below 45 kt, else forward.
+
+    Parameters
+    ----------
+    speed : float
+        Airspeed [m/s], >= 0.
+
+    Returns
+    -------
+    str
+        ``"hover"`` below :data:`LOW_SPEED_LIMIT` (45 kt, about 23 m/s), ``"forward"`` at and above it.
+
+    Raises
+    ------
+    ValueError
+        ``speed`` negative or not a finite number.
+
+    Examples
+    --------
+    >>> flight_regime(0.0), flight_regime(50.0)
+    ('hover', 'forward')
+    """
+    if isinstance(speed, bool) or not isinstance(speed, numbers.Real) or not math.isfinite(speed) or speed < 0:
+        raise ValueError(f"flight_regime: speed must be a finite airspeed >= 0 [m/s], got {speed!r}")
+    return "hover" if speed < LOW_SPEED_LIMIT else "forward"
 
 
 def all_specs(limits=None, response_type="attitude"):
