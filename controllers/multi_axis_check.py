@@ -21,7 +21,7 @@ from .specs import evaluate_specs
 __all__ = ["global_check"]
 
 
-def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte="all other", progress=False):
+def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte=None, progress=False):
     """Per axis: the DMO's crossover against an independent global search's on the same specs.
 
     Parameters
@@ -33,8 +33,11 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
     beat_tolerance : float
         The search beats the DMO when its crossover exceeds the DMO's by more than this
         fraction (the DMO stops its boundary bisection at 0.5 %).
-    mte : str
-        MTE class of the specs (as given to the design).
+    mte : str or None
+        None (default): the specs the design graded its final loops on
+        (``result.spec_lists``: its MTE class, flight regime and final boundaries);
+        a string: the hover specs of that MTE class rebuilt at the DMO's final
+        boundaries.
     progress : bool
         tqdm counters of the searches.
 
@@ -67,7 +70,10 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
         design, res = result.designs[a], result.dmo_results.get(a)
         wc = res.crossover_boundary if res is not None else DEFAULT_CROSSOVER_START[a]
         wd = res.drb_boundary if res is not None and np.isfinite(res.drb_boundary) else 0.9
-        specs = axis_specs(a, wc, wd, mte=mte, limits=result.limits.get(a))
+        # the design's own specs, so that a forward-flight design is checked on the
+        # forward-flight charts it was designed against
+        specs = (result.spec_lists[a] if mte is None
+                 else axis_specs(a, wc, wd, mte=mte, limits=result.limits.get(a)))
         table = evaluate_specs(design, specs)
         graded = table[(table.kind != "objective") & (table.spec != "CrsMnG2")]
         ok = bool(graded.met.all())

@@ -68,6 +68,26 @@ def test_design_grades_the_regime_asked_for_and_hover_stays_the_default():
     assert "SpiralF.MIL-F-8785C" in set(fwd.specs["roll"].spec)
 
 
+def test_global_check_grades_the_specs_the_design_was_graded_on():
+    from controllers.multi_axis_check import global_check
+    fwd = design_multi_axis(_roll_plant(), axes=["roll"], settings=FAST, progress=False, speed="forward")
+    used = []
+    import controllers.multi_axis_check as check_module
+    real = check_module.evaluate_specs
+
+    def spy(design, specs):
+        used.append({s.name for s in specs})
+        return real(design, specs)
+    check_module.evaluate_specs = spy
+    try:
+        global_check(fwd, maxiter=1, popsize=2)
+    finally:
+        check_module.evaluate_specs = real
+    # the forward-flight design is checked on its forward-flight charts, not the hover ones
+    assert used and used[0] == {s.name for s in fwd.spec_lists["roll"]}
+    assert "BnwAtH1.roll" not in used[0]
+
+
 def test_unknown_speed_is_named():
     with pytest.raises(ValueError, match="speed"):
         design_multi_axis(_roll_plant(), axes=["roll"], settings=FAST, progress=False, speed="cruise")
