@@ -9,14 +9,21 @@ revolutions, 6 elements). Writes to ``results/coaxial_design_space/``:
 
 * ``design_space.csv``   key coefficients per point (cross-rotor M and Lbar, diagonal
   Lbar) with CR %, insensitivity %, J_ave, trusted, trim thrusts, wall time;
-* ``summary.csv``        one row per point (wide);
+* ``summary.csv``        one row per point (wide): J_ave, max CR %, max insensitivity %,
+  trusted and ``trust_failures`` (:func:`aircraft.identification.trust_check`'s reasons);
 * ``coefficients.png``   coefficients against spacing, one line per thrust;
 * ``schedule.json``      the interpolated model (:class:`aircraft.inflow.ScheduledInflow`;
-  load it with ``ScheduledInflow.from_file(path, spacing, ct)``), unless a point failed;
+  load it with ``ScheduledInflow.from_file(path, spacing, ct)``) over the trusted points
+  only (the largest all-trusted sub-grid, ``schedule(require_trusted=True)``; ``--all-points``:
+  over every point), not written when fewer than two trusted points remain;
 * ``timing.csv``         wall time per point and in all, and whether the wake cache was on.
 
 Run: ``python -m studies.coaxial_design_space`` (4 spacings x 2 thrusts, 45 s sweeps from
 0.7 rad/s; about 3 min per point on 2 idle cores the first time, the fits only once cached);
+``--structure`` picks the fitted structure (default the free-mass ``coaxial_6state``; or the
+shipped model's ``coaxial_6state_axisymmetric_pp_collective_mass``, the same six sweeps).
+Trust is judged without the reproduction part (no second data set is run: it would double
+the wake runs), so ``trusted`` reads "trusted, reproduction not checked".
 ``--no-cache`` recomputes the wake runs (the committed results: their timing is the data
 sets'); ``--small``: a tiny wake on 2 spacings x 1 thrust, for the tests.
 """

@@ -9,7 +9,8 @@
     ─► DesignSpaceResult: key coefficients per point (cross-rotor M and Lbar, CR %,
        insensitivity %, J_ave, trusted), .to_pandas(), .plot()
     ─► .schedule(spacing, ct): aircraft.inflow.ScheduledInflow, the identified
-       matrices interpolated linearly in h/R and C_T (no extrapolation)
+       matrices interpolated linearly in h/R and C_T (no extrapolation);
+       require_trusted=True: over the largest sub-grid of trusted points only
 
 This is the dissertation's recommendation 2 (identify the inflow across the design
 space). The points are identified one after another; each one's independent wake
