@@ -9,14 +9,21 @@ revolutions, 6 elements). Writes to ``results/coaxial_design_space/``:
 
 * ``design_space.csv``   key coefficients per point (cross-rotor M and Lbar, diagonal
   Lbar) with CR %, insensitivity %, J_ave, trusted, trim thrusts, wall time;
-* ``summary.csv``        one row per point (wide);
+* ``summary.csv``        one row per point (wide): J_ave, max CR %, max insensitivity %,
+  trusted and ``trust_failures`` (:func:`aircraft.identification.trust_check`'s reasons);
 * ``coefficients.png``   coefficients against spacing, one line per thrust;
 * ``schedule.json``      the interpolated model (:class:`aircraft.inflow.ScheduledInflow`;
-  load it with ``ScheduledInflow.from_file(path, spacing, ct)``), unless a point failed;
+  load it with ``ScheduledInflow.from_file(path, spacing, ct)``) over the trusted points
+  only (the largest all-trusted sub-grid, ``schedule(require_trusted=True)``; ``--all-points``:
+  over every point), not written when fewer than two trusted points remain;
 * ``timing.csv``         wall time per point and in all, and whether the wake cache was on.
 
 Run: ``python -m studies.coaxial_design_space`` (4 spacings x 2 thrusts, 45 s sweeps from
 0.7 rad/s; about 3 min per point on 2 idle cores the first time, the fits only once cached);
+``--structure`` picks the fitted structure (default the free-mass ``coaxial_6state``; or the
+shipped model's ``coaxial_6state_axisymmetric_pp_collective_mass``, the same six sweeps).
+Trust is judged without the reproduction part (no second data set is run: it would double
+the wake runs), so ``trusted`` reads "trusted, reproduction not checked".
 ``--no-cache`` recomputes the wake runs (the committed results: their timing is the data
 sets'); ``--small``: a tiny wake on 2 spacings x 1 thrust, for the tests.
 """
@@ -30,12 +37,16 @@ from pathlib import Path
 import pandas as pd
 
 from aircraft.identification import IdentificationSettings, identify_design_space
-from aircraft.identification.design_space import SPACINGS, THRUSTS
+from aircraft.identification.design_space import DesignSpaceError, SPACINGS, THRUSTS
 from aircraft.wake import WakeSettings
 
 COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 # --small: the tiny wake of tests/aircraft/identification/test_identification_pipeline.py (20 deg, 1.5 revs, 5 elements)
 TINY = WakeSettings(azimuth_step=math.radians(20.0), wake_revolutions=1.5, n_elements=5)
+#: The structures the study compares: the free-mass 6-state and the shipped model's
+#: (every axisymmetric coupling, collective apparent masses held at Pitt-Peters').
+STRUCTURES = ("coaxial_6state", "coaxial_6state_axisymmetric_pp_collective_mass")
+STRUCTURE = "coaxial_6state"
 
 
 def settings_for(small=False, sweep_s=45.0, w_min=0.7):
@@ -49,14 +60,15 @@ def settings_for(small=False, sweep_s=45.0, w_min=0.7):
     return IdentificationSettings(wake=COARSE, sweep_s=sweep_s, w_min=w_min, fit_range=(max(1.0, w_min), 25.0))
 
 
-def run_study(spacings, cts, settings, *, out_dir="results/coaxial_design_space", n_jobs=2, scheduler=None,
-              verbose=True, cache=True):
-    """Identify over the grid, write the tables, figure and schedule; return the DesignSpaceResult.
-    ``cache=False`` recomputes every wake run (and stores none), so ``timing.csv`` holds
-    the data sets' wall times rather than cache reads."""
+def run_study(spacings, cts, settings, *, structure=STRUCTURE, out_dir="results/coaxial_design_space", n_jobs=2,
+              scheduler=None, verbose=True, cache=True, trusted_only=True):
+    """Identify ``structure`` over the grid, write the tables, figure and schedule; return the
+    DesignSpaceResult. ``cache=False`` recomputes every wake run (and stores none), so
+    ``timing.csv`` holds the data sets' wall times rather than cache reads. ``trusted_only``:
+    the schedule's nodes are the trusted points only (``schedule(require_trusted=True)``)."""
     t0 = time.perf_counter()
-    result = identify_design_space(spacings, cts, settings=settings, n_jobs=n_jobs, scheduler=scheduler,
-                                   progress=verbose, cache_dir="default" if cache else None)
+    result = identify_design_space(spacings, cts, structure=structure, settings=settings, n_jobs=n_jobs,
+                                   scheduler=scheduler, progress=verbose, cache_dir="default" if cache else None)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     table = result.to_pandas()
@@ -70,19 +82,26 @@ def run_study(spacings, cts, settings, *, out_dir="results/coaxial_design_space"
                            for p in result.points]
                           + [{"spacing": None, "ct": None, "wall_s": round(wall, 1), "wake_cache": cache_state}])
     timing.to_csv(out / "timing.csv", index=False)
-    schedule_note = "no schedule (failed points)"
-    if not result.failed:
-        result.schedule().save(out / "schedule.json")
-        schedule_note = f"schedule in {out / 'schedule.json'}"
+    try:
+        sched = result.schedule(require_trusted=trusted_only)
+    except DesignSpaceError as err:      # too few trusted (or failed) points: say so, write no schedule
+        schedule_note = f"no schedule ({err})"
+    else:
+        sched.save(out / "schedule.json")
+        which = "trusted points only" if trusted_only else "every point"
+        schedule_note = (f"schedule ({which}: h/R {', '.join(f'{v:g}' for v in sched.spacings)} x "
+                         f"C_T {', '.join(f'{v:g}' for v in sched.cts)}) in {out / 'schedule.json'}")
     if verbose:
         fmt = lambda v: f"{v:.4g}"   # noqa: E731
         ws = settings.wake_settings
-        print("== Coaxial design space: 6-state hover model over rotor spacing x thrust ==")
+        print(f"== Coaxial design space: {structure} hover model over rotor spacing x thrust ==")
         print(f"wake: {math.degrees(ws.azimuth_step):g} deg steps, {ws.wake_revolutions:g} revs, "
               f"{ws.n_elements} elements; sweeps {settings.sweep_s:g} s from {settings.w_min:g} rad/s")
         print(summary.to_string(index=False, float_format=fmt))
         for p in result.failed:
             print(f"FAILED h/R {p.spacing:g}, C_T {p.ct:g}: {p.error}")
+        print(f"trusted at {int(summary.trusted.sum())} of {len(summary)} points (trust_check, reproduction "
+              "not checked)")
         print(f"{schedule_note}; tables and figure in {out}/  (wall {wall:.0f} s, wake cache {cache_state})")
     return result
 
@@ -105,14 +124,18 @@ def main(argv=None):
                         help="Dask scheduler address, passed to identify_inflow where it accepts one")
     parser.add_argument("--no-cache", action="store_true",
                         help="recompute every wake run (the committed timing is the data sets', not cache reads)")
+    parser.add_argument("--structure", choices=STRUCTURES, default=STRUCTURE, help="structure fitted at every point")
+    parser.add_argument("--all-points", action="store_true",
+                        help="schedule over every point, trusted or not (default: trusted points only)")
     parser.add_argument("--out", default="results/coaxial_design_space")
     args = parser.parse_args(argv)
     spacings, cts = args.spacings, args.cts
     if args.small:
         spacings = (0.14, 0.20) if args.spacings == SPACINGS else args.spacings
         cts = (0.0096,) if args.cts == THRUSTS else args.cts
-    run_study(spacings, cts, settings_for(args.small, args.sweep_s, args.w_min), out_dir=args.out, n_jobs=args.n_jobs,
-              scheduler=args.scheduler, cache=not args.no_cache)
+    run_study(spacings, cts, settings_for(args.small, args.sweep_s, args.w_min), structure=args.structure,
+              out_dir=args.out, n_jobs=args.n_jobs, scheduler=args.scheduler, cache=not args.no_cache,
+              trusted_only=not args.all_points)
 
 
 if __name__ == "__main__":

@@ -4,11 +4,13 @@
 
     for each rotor spacing h/R x system thrust C_T of the grid:
         coaxial_compound() with the lower hub moved (spaced_config)
-        ─► identify_inflow(..., "coaxial_6state", ct=C_T)   (wake runs through the executor, cached)
+        ─► identify_inflow(..., structure, ct=C_T)   (wake runs through the executor, cached;
+                                                      default "coaxial_6state")
     ─► DesignSpaceResult: key coefficients per point (cross-rotor M and Lbar, CR %,
        insensitivity %, J_ave, trusted), .to_pandas(), .plot()
     ─► .schedule(spacing, ct): aircraft.inflow.ScheduledInflow, the identified
-       matrices interpolated linearly in h/R and C_T (no extrapolation)
+       matrices interpolated linearly in h/R and C_T (no extrapolation);
+       require_trusted=True: over the largest sub-grid of trusted points only
 
 This is the dissertation's recommendation 2 (identify the inflow across the design
 space). The points are identified one after another; each one's independent wake
@@ -22,6 +24,7 @@ from __future__ import annotations
 
 import dataclasses
 import inspect
+import itertools
 import math
 import time
 from dataclasses import dataclass, field
@@ -30,10 +33,11 @@ import numpy as np
 import pandas as pd
 
 from .pipeline import IdentificationSettings, PipelineError, identify_inflow
+from .structures import get_structure
 from .structures.hover import Coaxial6State
 
 __all__ = ["DesignSpaceError", "DesignPoint", "DesignSpaceResult", "KEY_PARAMETERS", "SPACINGS", "THRUSTS",
-           "spaced_config", "identify_design_space"]
+           "DEFAULT_STRUCTURE", "spaced_config", "identify_design_space"]
 
 #: Default grid: rotor spacings h/R [-] (0.14 is Table B.1's) ...
 SPACINGS = (0.10, 0.14, 0.20, 0.30)
@@ -46,6 +50,8 @@ THRUSTS = (0.0075, 0.0096)
 KEY_PARAMETERS = ("m14", "m41", "m25", "m52", "l14", "l41", "l25", "l52", "l11", "l44", "l22", "l55")
 
 _STRUCTURE = Coaxial6State("rotor")
+#: The structure :func:`identify_design_space` fits unless told otherwise (free apparent masses).
+DEFAULT_STRUCTURE = "coaxial_6state"
 
 
 class DesignSpaceError(ValueError):
@@ -148,6 +154,10 @@ class DesignSpaceResult:
     wall_s : float
         Wall time of the whole grid [s].
     settings : IdentificationSettings
+    meta : dict
+        The configuration's name and the structure's label.
+    structure : InflowStructure, optional
+        The structure fitted at every point (default: the free-mass coaxial 6-state).
     """
 
     spacings: tuple
@@ -156,6 +166,12 @@ class DesignSpaceResult:
     wall_s: float = 0.0
     settings: object = None
     meta: dict = field(default_factory=dict)
+    structure: object = None
+
+    @property
+    def fitted_structure(self):
+        """The structure of the points (the free-mass coaxial 6-state when none was recorded)."""
+        return _STRUCTURE if self.structure is None else self.structure
 
     def point(self, spacing, ct) -> DesignPoint:
         """The grid point at (``spacing`` [-], ``ct`` [-]); DesignSpaceError if there is none."""
@@ -195,7 +211,9 @@ class DesignSpaceResult:
         return pd.DataFrame(rows).reindex(columns=cols)
 
     def summary_table(self) -> pd.DataFrame:
-        """Wide table: one row per point, the key values, J_ave, max CR %, trusted, wall_s."""
+        """Wide table: one row per point, the key values, J_ave, max CR %, max insensitivity %,
+        trusted, the trim thrusts, error, ``trust_failures`` (the trust check's reasons,
+        joined by " | "; empty when trusted) and wall_s."""
         rows = []
         for p in self.points:
             row = {"spacing": p.spacing, "ct": p.ct}
@@ -207,7 +225,7 @@ class DesignSpaceResult:
                 row.update({"J_ave": m.J_ave, "max_cramer_rao_pct": float(free.cramer_rao_pct.max()),
                             "max_insensitivity_pct": float(free.insensitivity_pct.max()), "trusted": m.trusted,
                             "CT_U": float(m.trim.outputs["CT_U"]), "CT_L": float(m.trim.outputs["CT_L"]),
-                            "error": p.error})
+                            "error": p.error, "trust_failures": _trust_failures(m)})
             else:
                 row.update({"trusted": False, "error": p.error})
             row["wall_s"] = round(p.wall_s, 1)
@@ -262,18 +280,51 @@ class DesignSpaceResult:
         fig.tight_layout()
         return fig
 
+    def trusted_subgrid(self):
+        """The largest rectangular sub-grid whose every node is identified and trusted.
+
+        Returns
+        -------
+        tuple of (tuple of float, tuple of float)
+            Its spacings h/R [-] and thrusts C_T [-] (the most nodes; on a tie the
+            one with the most thrusts, then the first in grid order). Both empty
+            when no point is trusted. The retained spacings (or thrusts) need not be
+            neighbours on the grid: an untrusted row or column is skipped.
+
+        Examples
+        --------
+        >>> from types import SimpleNamespace
+        >>> pts = [DesignPoint(s, c, SimpleNamespace(trusted=(s, c) != (0.2, 0.0075)))
+        ...        for s in (0.1, 0.2, 0.3) for c in (0.0075, 0.0096)]
+        >>> DesignSpaceResult((0.1, 0.2, 0.3), (0.0075, 0.0096), pts).trusted_subgrid()
+        ((0.1, 0.3), (0.0075, 0.0096))
+        """
+        ok = np.array([[self.point(s, c).ok and bool(self.point(s, c).model.trusted) for c in self.cts]
+                       for s in self.spacings], bool)
+        best = ((), ())
+        # a fixed set of thrusts keeps every spacing trusted at all of them: try each set
+        for k in range(len(self.cts), 0, -1):
+            for cols in itertools.combinations(range(len(self.cts)), k):
+                rows = [i for i in range(len(self.spacings)) if ok[i, list(cols)].all()]
+                if len(rows) * k > len(best[0]) * len(best[1]):
+                    best = (tuple(self.spacings[i] for i in rows), tuple(self.cts[j] for j in cols))
+        return best
+
     def schedule(self, spacing=None, ct=None, *, require_trusted=False, pade_order=None, name=None):
         """The identified models interpolated over the grid (an aircraft inflow model).
 
         Parameters
         ----------
         spacing : float, optional
-            Rotor spacing h/R [-] of the returned model (default: the first grid value).
+            Rotor spacing h/R [-] of the returned model (default: the first node's).
         ct : float, optional
-            System thrust coefficient [-] (default: the first grid value).
+            System thrust coefficient [-] (default: the first node's).
         require_trusted : bool
-            Refuse the schedule if any node failed the guideline (CR < 20 %,
-            insensitivity < 10 %).
+            ``False``: every grid point is a node (each one's trust is carried in
+            ``ScheduledInflow.trusted``). ``True``: only trusted points are nodes, on
+            the largest rectangular sub-grid of trusted points
+            (:meth:`trusted_subgrid`): untrusted or failed points are left out and
+            the schedule interpolates across them.
         pade_order : int, optional
             Padé order of the delays (default: the identification settings').
         name : str, optional
@@ -285,41 +336,72 @@ class DesignSpaceResult:
         Raises
         ------
         DesignSpaceError
-            If a grid point failed (the grid would have a hole) or, with
-            ``require_trusted``, is not trusted.
+            Without ``require_trusted``, if a grid point failed (the grid would have
+            a hole); with it, if fewer than two trusted nodes remain (nothing to
+            interpolate).
         aircraft.inflow.InflowError
-            If the point is outside the grid or the interpolated model is unstable.
+            If the point is outside the (sub-)grid or the interpolated model is unstable.
         """
         from aircraft.inflow import ScheduledInflow
-        if self.failed:
-            raise DesignSpaceError("cannot schedule over a grid with failed points: " + "; ".join(
-                f"h/R {p.spacing:g}, C_T {p.ct:g}: {p.error}" for p in self.failed))
-        shape = (len(self.spacings), len(self.cts))
-        n = len(_STRUCTURE.outputs)
+        if not isinstance(require_trusted, (bool, np.bool_)):
+            raise DesignSpaceError(f"require_trusted must be True or False, got {require_trusted!r}")
+        if require_trusted:
+            spacings, cts = self.trusted_subgrid()
+            if len(spacings) * len(cts) < 2:
+                trusted = [f"h/R {p.spacing:g}, C_T {p.ct:g}" for p in self.points if p.ok and p.model.trusted]
+                raise DesignSpaceError(
+                    f"require_trusted: {len(trusted)} trusted point(s) of {len(self.points)} "
+                    f"({', '.join(trusted) or 'none'}); a schedule needs at least two trusted nodes on a "
+                    "rectangular sub-grid to interpolate")
+        else:
+            spacings, cts = self.spacings, self.cts
+            if self.failed:
+                raise DesignSpaceError("cannot schedule over a grid with failed points: " + "; ".join(
+                    f"h/R {p.spacing:g}, C_T {p.ct:g}: {p.error}" for p in self.failed))
+        structure = self.fitted_structure
+        shape = (len(spacings), len(cts))
+        n = len(structure.outputs)
         grid = {k: np.zeros(shape + (n, n)) for k in ("M", "Lbar", "tau")}
         grid.update(loads_ref=np.zeros(shape + (n,)), inflow_ref=np.zeros(shape + (n,)))
         trusted = np.zeros(shape, bool)
         omegas = set()
-        for i, s in enumerate(self.spacings):
-            for j, c in enumerate(self.cts):
+        for i, s in enumerate(spacings):
+            for j, c in enumerate(cts):
                 m = self.point(s, c).model
                 mats = m.fit.structure.matrices()
                 grid["M"][i, j], grid["Lbar"][i, j], grid["tau"][i, j] = mats["M"], mats["Lbar"], mats["tau"]
                 grid["loads_ref"][i, j], grid["inflow_ref"][i, j] = m._refs()
                 trusted[i, j] = m.trusted
                 omegas.add(round(m.omega, 9))
-        if require_trusted and not trusted.all():
-            bad = [f"h/R {s:g}, C_T {c:g}" for i, s in enumerate(self.spacings) for j, c in enumerate(self.cts)
-                   if not trusted[i, j]]
-            raise DesignSpaceError(f"require_trusted: points not trusted: {', '.join(bad)}")
         if len(omegas) != 1:
             raise DesignSpaceError(f"the grid mixes rotor speeds {sorted(omegas)} rad/s")
         order = pade_order if pade_order is not None else (self.settings.pade_order if self.settings else 2)
-        return ScheduledInflow(self.spacings, self.cts, omega=omegas.pop(),
-                               spacing=self.spacings[0] if spacing is None else spacing,
-                               ct=self.cts[0] if ct is None else ct, rotors=_STRUCTURE.rotors,
-                               pade_order=order, name=name or "coaxial 6-state scheduled in h/R and C_T",
+        label = self.meta.get("structure", "coaxial 6-state")
+        return ScheduledInflow(spacings, cts, omega=omegas.pop(),
+                               spacing=spacings[0] if spacing is None else spacing,
+                               ct=cts[0] if ct is None else ct, rotors=structure.rotors,
+                               pade_order=order, name=name or f"{label} scheduled in h/R and C_T",
                                trusted=trusted, **grid)
+
+
+def _trust_failures(model):
+    """The trust check's reasons, joined (a stand-in model without them: empty)."""
+    failures = getattr(model, "trust_failures", None)
+    return " | ".join(failures()) if callable(failures) else ""
+
+
+def _design_structure(structure):
+    """(instance, label) of a coaxial M/Lbar/tau structure; DesignSpaceError otherwise."""
+    if isinstance(structure, str) and structure == DEFAULT_STRUCTURE:
+        return _STRUCTURE, "coaxial 6-state"      # the instance the study has always fitted
+    try:
+        inst = get_structure(structure)
+    except (ValueError, TypeError) as err:
+        raise DesignSpaceError(f"structure: {err}") from err
+    if getattr(inst, "form", None) != "mltau" or tuple(inst.rotors) != ("U", "L") or len(inst.outputs) != 6:
+        raise DesignSpaceError(f"structure must be a coaxial 6-state M/Lbar/tau structure with rotors ('U', 'L') "
+                               f"(a schedule interpolates M, Lbar, tau), got {structure!r}")
+    return inst, (structure if isinstance(structure, str) else inst.key)
 
 
 def _scheduler_kwargs(scheduler):
@@ -331,9 +413,10 @@ def _scheduler_kwargs(scheduler):
     return {"scheduler": scheduler}
 
 
-def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condition=None, settings=None,
-                          n_jobs=2, cache_dir="default", progress=True, scheduler=None, on_error="record"):
-    """Identify the coaxial 6-state hover model at every (spacing, thrust) of a grid.
+def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, structure=DEFAULT_STRUCTURE, config=None,
+                          condition=None, settings=None, n_jobs=2, cache_dir="default", progress=True,
+                          scheduler=None, on_error="record"):
+    """Identify a coaxial 6-state hover model at every (spacing, thrust) of a grid.
 
     Parameters
     ----------
@@ -342,6 +425,12 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
     cts : sequence of float
         System thrust coefficients [-], strictly increasing (default
         :data:`THRUSTS`); each is shared equally by the rotors, torques balanced.
+    structure : str or InflowStructure
+        The coaxial 6-state M/Lbar/tau structure fitted at every point: a key of
+        :data:`aircraft.identification.STRUCTURES` or an instance (default
+        :data:`DEFAULT_STRUCTURE`, free apparent masses; the shipped model's is
+        ``"coaxial_6state_axisymmetric_pp_collective_mass"``). Every point uses the
+        same six swashplate sweeps whatever the structure, so the wake runs are shared.
     config : aircraft.AircraftConfig, optional
         Coaxial configuration whose lower hub is moved (default
         :func:`aircraft.configs.coaxial_compound`).
@@ -370,7 +459,7 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
     Raises
     ------
     DesignSpaceError
-        Bad grid, ``on_error`` or ``scheduler`` (before any wake run).
+        Bad grid, ``structure``, ``on_error`` or ``scheduler`` (before any wake run).
     PipelineError, aircraft.wake.WakeTrimError, aircraft.inflow.InflowError, flightid.IdentificationError
         With ``on_error="raise"``, the first failed point.
     """
@@ -382,6 +471,7 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
     if settings is not None and not isinstance(settings, IdentificationSettings):
         raise DesignSpaceError(f"settings must be an IdentificationSettings, got {type(settings).__name__}")
     extra = _scheduler_kwargs(scheduler)
+    struct, label = _design_structure(structure)
     configs = {s: spaced_config(config, s) for s in spacings}   # validates config before any run
     from aircraft.wake.trim import WakeTrimError     # the wake (numba) only once the input is valid
     from flightid import IdentificationError         # e.g. records too short for the sweep band
@@ -395,8 +485,8 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
             t1 = time.perf_counter()
             model = None
             try:
-                model = identify_inflow(configs[s], condition, _STRUCTURE, ct=c, settings=settings,
-                                        name=f"coaxial 6-state, h/R {s:g}, C_T {c:g}", n_jobs=n_jobs,
+                model = identify_inflow(configs[s], condition, struct, ct=c, settings=settings,
+                                        name=f"{label}, h/R {s:g}, C_T {c:g}", n_jobs=n_jobs,
                                         cache_dir=cache_dir, progress=progress, **extra)
                 model.to_inflow()        # an unstable identified model cannot be scheduled: say so here
                 points.append(DesignPoint(s, c, model, None, time.perf_counter() - t1))
@@ -406,4 +496,5 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, config=None, condit
                 # the model (if any) stays for the table; the point is left out of a schedule
                 points.append(DesignPoint(s, c, model, f"{type(err).__name__}: {err}", time.perf_counter() - t1))
     return DesignSpaceResult(spacings, cts, points, time.perf_counter() - t0, settings or IdentificationSettings(),
-                             {"config": getattr(config, "name", "coaxial_compound()")})
+                             {"config": getattr(config, "name", "coaxial_compound()"), "structure": label},
+                             struct)

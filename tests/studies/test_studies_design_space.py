@@ -41,3 +41,15 @@ def test_design_space_study_writes_table_figure_and_schedule(tmp_path):
     if (tmp_path / "schedule.json").exists():     # written when the point identified a stable model
         doc = json.loads((tmp_path / "schedule.json").read_text())
         assert doc["spacings"] == [0.14] and doc["cts"] == [0.0096]
+
+
+def test_design_space_study_offers_both_structures_and_the_all_points_schedule():
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
+    done = subprocess.run([sys.executable, "-m", "studies.coaxial_design_space", "--help"],
+                          cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    text = " ".join(done.stdout.split())
+    assert "coaxial_6state_axisymmetric_pp_collective_mass" in text and "--all-points" in text
+    bad = subprocess.run([sys.executable, "-m", "studies.coaxial_design_space", "--structure", "single_rotor_3state"],
+                         cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+    assert bad.returncode == 2 and "invalid choice" in bad.stderr      # argparse refuses before any wake run

@@ -252,8 +252,9 @@ def test_result_table_plot_and_schedule():
     np.testing.assert_allclose(sched.matrices(0.25, 0.009)["Lbar"][:2, :2], _linear("Lbar", 0.25, 0.009)[:2, :2],
                                rtol=0, atol=1e-12)
     assert not sched.trusted.all()
-    with pytest.raises(DesignSpaceError, match="require_trusted: points not trusted: h/R 0.3, C_T 0.0075"):
-        res.schedule(require_trusted=True)
+    # trusted points only: the untrusted h/R 0.3 row is left out of the nodes
+    only = res.schedule(0.2, 0.009, require_trusted=True)
+    assert tuple(only.spacings) == (0.10, 0.14, 0.20) and tuple(only.cts) == CTS and only.trusted.all()
     with pytest.raises(DesignSpaceError, match="unknown parameters"):
         res.plot(parameters=("m99",))
     with pytest.raises(DesignSpaceError, match="no grid point"):
@@ -286,3 +287,76 @@ def test_identify_design_space_refuses_bad_input_before_any_wake_run():
         with pytest.raises(DesignSpaceError, match="takes no scheduler"):
             identify_design_space(SPACINGS, CTS, scheduler="tcp://127.0.0.1:8786", cache_dir=None,
                                   progress=False)
+
+
+# -- the schedule from trusted points only ---------------------------------------------
+def test_trusted_subgrid_leaves_out_an_untrusted_point_and_its_row():
+    # one untrusted point (0.2, 0.0075): dropping its spacing keeps 3 x 2 = 6 nodes,
+    # dropping its thrust only 4 x 1 = 4, so the spacing goes
+    res = _result(trusted=lambda s, c: (s, c) != (0.2, 0.0075))
+    assert res.trusted_subgrid() == ((0.10, 0.14, 0.30), CTS)
+    sched = res.schedule(0.14, 0.0096, require_trusted=True)
+    assert tuple(sched.spacings) == (0.10, 0.14, 0.30) and sched.trusted.all()
+    # the nodes are those points' own matrices (the tied structure's, as in the full grid)
+    node = _fake_model(0.30, 0.0075).fit.structure.matrices()
+    np.testing.assert_allclose(sched.matrices(0.30, 0.0075)["Lbar"], node["Lbar"], rtol=0, atol=1e-12)
+    # the full-grid schedule still has every point as a node, the untrusted one flagged
+    full = res.schedule(0.14, 0.0096)
+    assert tuple(full.spacings) == SPACINGS and int((~full.trusted).sum()) == 1
+
+
+def test_trusted_only_schedule_skips_a_failed_point_that_the_full_grid_refuses():
+    res = _result(fail=(0.10, 0.0096))
+    with pytest.raises(DesignSpaceError, match="failed points"):
+        res.schedule()
+    sched = res.schedule(0.2, 0.0096, require_trusted=True)
+    assert tuple(sched.spacings) == (0.14, 0.20, 0.30) and tuple(sched.cts) == CTS
+
+
+def test_trusted_only_schedule_refuses_too_few_trusted_points():
+    with pytest.raises(DesignSpaceError, match=r"0 trusted point\(s\) of 8 \(none\)"):
+        _result(trusted=lambda s, c: False).schedule(require_trusted=True)
+    with pytest.raises(DesignSpaceError, match=r"1 trusted point\(s\) of 8 \(h/R 0.14, C_T 0.0096\)"):
+        _result(trusted=lambda s, c: (s, c) == (0.14, 0.0096)).schedule(require_trusted=True)
+    # two trusted points on a diagonal share no row or column: no rectangle of two nodes
+    diagonal = _result(trusted=lambda s, c: (s, c) in ((0.10, 0.0075), (0.30, 0.0096)))
+    assert diagonal.trusted_subgrid() == ((0.10,), (0.0075,))
+    with pytest.raises(DesignSpaceError, match="at least two trusted nodes"):
+        diagonal.schedule(require_trusted=True)
+    with pytest.raises(DesignSpaceError, match="require_trusted must be True or False"):
+        _result().schedule(require_trusted="yes")
+    # two trusted points at one spacing: a schedule in thrust alone
+    pair = _result(trusted=lambda s, c: s == 0.20)
+    sched = pair.schedule(0.20, 0.009, require_trusted=True)
+    assert tuple(sched.spacings) == (0.20,) and tuple(sched.cts) == CTS
+    with pytest.raises(InflowError, match="outside the grid node"):
+        pair.schedule(0.14, 0.009, require_trusted=True)
+
+
+# -- the structure argument -------------------------------------------------------------
+def test_identify_design_space_fits_the_structure_it_is_given(monkeypatch):
+    import aircraft.identification.design_space as ds
+    seen = []
+
+    def fake_identify(config, condition, structure, *, ct, name, **kw):
+        seen.append((structure, name))
+        return SimpleNamespace(to_inflow=lambda: None)
+
+    monkeypatch.setattr(ds, "identify_inflow", fake_identify)
+    res = identify_design_space((0.14, 0.2), (0.0096,), structure="coaxial_6state_axisymmetric_pp_collective_mass",
+                                progress=False, cache_dir=None)
+    assert len(seen) == 2 and not res.failed
+    struct = seen[0][0]
+    # the shipped model's structure: collective apparent masses held a priori (m11, m44 fixed)
+    assert type(struct).__name__ == "Coaxial6StateAxisymmetric" and struct.a_priori
+    assert res.structure is struct and res.meta["structure"] == "coaxial_6state_axisymmetric_pp_collective_mass"
+    assert seen[0][1].startswith("coaxial_6state_axisymmetric_pp_collective_mass, h/R 0.14")
+    # the default is the free-mass 6-state, the very instance fitted before the argument existed
+    seen.clear()
+    res = identify_design_space((0.14,), (0.0096,), progress=False, cache_dir=None)
+    assert seen[0][0] is ds._STRUCTURE and seen[0][1] == "coaxial 6-state, h/R 0.14, C_T 0.0096"
+    with pytest.raises(DesignSpaceError, match="coaxial 6-state M/Lbar/tau"):
+        identify_design_space((0.14,), (0.0096,), structure="single_rotor_3state", progress=False, cache_dir=None)
+    with pytest.raises(DesignSpaceError, match="structure"):
+        identify_design_space((0.14,), (0.0096,), structure="no_such_structure", progress=False, cache_dir=None)
+    assert len(seen) == 1          # the refused structures ran nothing
