@@ -86,6 +86,8 @@ def run_study(spacings, cts, settings, *, structure=STRUCTURE, out_dir="results/
         sched = result.schedule(require_trusted=trusted_only)
     except DesignSpaceError as err:      # too few trusted (or failed) points: say so, write no schedule
         schedule_note = f"no schedule ({err})"
+        # a schedule of an earlier run would otherwise sit beside tables that disown it
+        (out / "schedule.json").unlink(missing_ok=True)
     else:
         sched.save(out / "schedule.json")
         which = "trusted points only" if trusted_only else "every point"
