@@ -471,8 +471,9 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     mte : str
         ADS-33E-PRF MTE class of the specs.
     speed : {"hover", "forward"}
-        Flight regime of the specs, passed to :func:`controllers.specs_for`: ``"forward"``
-        selects the forward-flight charts (and drops the hover/low-speed ones) for every axis.
+        Flight regime of the specs, passed to :func:`controllers.specs_for`: ``"hover"`` is
+        hover and low speed, up to 45 [kt]; ``"forward"`` is above 45 [kt] and selects the
+        forward-flight charts (and drops the hover/low-speed ones) for every axis.
     start_closed : bool
         False (default): in the first sweep an axis not yet designed is left open. True:
         every axis's loop is closed at its ``start_gains`` from the first sweep on (its
