@@ -36,8 +36,9 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
+
+from _costs import cost_on   # benchmarks/ is on the path when a benchmark runs as a script
 
 from aircraft import identify_inflow
 from aircraft.configs import coaxial_compound
@@ -118,20 +119,6 @@ def _shipped_parameters(key):
     path = Path(aircraft.__file__).parent / "data" / "models" / f"{key}.json"
     record = json.loads(path.read_text())
     return pd.DataFrame(record["parameters"]).set_index("parameter"), record["J_ave"]
-
-
-def _cost_on(structure, data, cost_table):
-    """J_ave of a fitted structure on ``data`` over the pairs and bands of ``cost_table``
-    (the data's own frequency points in each band: the same rule for every model/data pair)."""
-    from flightid import cifer_cost
-    costs = []
-    for row in cost_table.itertuples():
-        h, coh = data.element(row.output, row.input)
-        band = (data.omega >= row.w_min) & (data.omega <= row.w_max)
-        hm = structure.frequency_response(data.omega[band])
-        i, j = structure.outputs.index(row.output), structure.inputs.index(row.input)
-        costs.append(cifer_cost(hm[i, j], h[band], coh[band]))
-    return float(np.mean(costs))
 
 
 def compare_with_shipped(model, shipped):
@@ -215,7 +202,7 @@ def run_multisine(args):
     fitted = model.fit.structure
     as_shipped = fitted.with_values({k: float(v) for k, v in shipped.value.items() if k in fitted.names})
     for label, st in (("multisine model", fitted), ("shipped sweep model", as_shipped)):
-        costs = {d: _cost_on(st, data, model.cost_table) for d, data in
+        costs = {d: cost_on(st, data, model.cost_table) for d, data in
                  (("multisine data", model.responses), ("sweep data", sweep_data))}
         print(f"  J_ave of the {label}: " + ", ".join(f"{k} {v:.1f}" for k, v in costs.items()))
     print("  verification (doublet) of the multisine model:")

@@ -38,6 +38,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from _costs import cost_on   # benchmarks/ is on the path when a benchmark runs as a script
+
 CT_SYSTEM = 0.0053 + 0.0043
 PAIRS = [("lam0_U", "CT_U"), ("lam1s_U", "CL_U"), ("lam0_L", "CT_L"), ("lam1s_L", "CL_L"),
          ("lam0_L", "CT_U"), ("lam0_U", "CT_L"), ("lam1s_L", "CL_U"), ("lam1s_U", "CL_L")]
@@ -76,22 +78,6 @@ def _compare(pa, pb, cr_max):
     df["well_identified"] = ((df.status_sweeps == "free") & (df.status_multisine == "free")
                              & (df.CR_sweeps_pct < cr_max) & (df.CR_multisine_pct < cr_max))
     return df.reset_index()
-
-
-def _cost_on(structure, data, cost_table):
-    """J_ave of a fitted ``structure`` against ``data`` over the pairs and bands of
-    ``cost_table``, on the data's own frequency points in each band (the same
-    rule for every model/data combination, so the four J_ave are comparable with
-    each other though not with a fit's log-grid J)."""
-    from flightid import cifer_cost
-    costs = []
-    for row in cost_table.itertuples():
-        h, coh = data.element(row.output, row.input)
-        band = (data.omega >= row.w_min) & (data.omega <= row.w_max)
-        hm = structure.frequency_response(data.omega[band])
-        i, j = structure.outputs.index(row.output), structure.inputs.index(row.input)
-        costs.append(cifer_cost(hm[i, j], h[band], coh[band]))
-    return float(np.mean(costs))
 
 
 def _same_structure(model_a, model_b, settings):
@@ -239,7 +225,7 @@ def run(duration, out, n_jobs, amplitude, wake_name="coarse", second_amplitude=N
           f"{int((well_same.diff_pct.abs() < 5).sum())} of {len(well_same)} within 5 %")
     sa, sb = model_a.fit.structure, model_b.fit.structure
     cross = pd.DataFrame([
-        {"model": m, "data": d, "J_ave_native_points": _cost_on(st, resp, model_a.cost_table)}
+        {"model": m, "data": d, "J_ave_native_points": cost_on(st, resp, model_a.cost_table)}
         for m, st in ((model_label, sa), ("multisine model", sb))
         for d, resp in ((label, model_a.responses), ("multisine", model_b.responses))])
     print(f"cross costs (each model on each experiment's lambda/C, the {experiment} pairs and bands):")
