@@ -13,7 +13,7 @@ from __future__ import annotations
 import control
 import numpy as np
 
-from .lti import coupling_numerator, residualize
+from flightid.lti import coupling_numerator, residualize
 
 __all__ = ["hover_roll_plant", "first_order_actuator", "second_order_actuator", "DelayedLTI",
            "roll_design_plant", "HOVER_ROLL_CONSTRAINTS"]
@@ -26,7 +26,7 @@ def _check_siso(sys, what):
     if isinstance(sys, control.LTI) and (sys.ninputs != 1 or sys.noutputs != 1):
         raise ValueError(f"{what} must be SISO, got {sys.ninputs} inputs x {sys.noutputs} outputs; "
                          "take one channel first (e.g. controllers.roll_design_plant or "
-                         "controllers.lti.coupling_numerator)")
+                         "flightid.lti.coupling_numerator)")
 
 
 class DelayedLTI:

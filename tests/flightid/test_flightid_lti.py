@@ -1,9 +1,9 @@
-"""Coupling numerators and residualisation: pure LTI operations of controllers.lti."""
+"""Coupling numerators and residualisation: pure LTI operations of flightid.lti."""
 import control
 import numpy as np
 import pytest
 
-from controllers.lti import CouplingError, coupling_numerator, residualize
+from flightid.lti import CouplingError, coupling_numerator, residualize
 
 
 def _two_axis():

@@ -1,4 +1,7 @@
-"""Pure LTI operations for single-axis plants: coupling numerators (Eq. 7.21), residualisation.
+"""Pure LTI operations on named state-space models: coupling numerators (Eq. 7.21), residualisation.
+
+Shared by the aircraft (bare-airframe responses), the control design (design plants)
+and anyone reducing an identified model; nothing here knows about rotors.
 
 Coupling numerators are single-axis plants with the other loops closed tightly.
 
