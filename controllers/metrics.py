@@ -104,23 +104,61 @@ def crossover_frequency(loop, omega=None):
 def gain_phase_margins(loop, omega=None):
     """Gain margin [dB], phase margin [deg] and their frequencies [rad/s].
 
-    Returns ``(gm_db, pm_deg, w_180, w_c)``.  GM is taken at the lowest
-    frequency where the *unwrapped* phase crosses -180 deg (mod 360) going down;
-    PM at the gain crossover (:func:`crossover_frequency`).  ``inf`` when there
+    Returns ``(gm_db, pm_deg, w_180, w_c)``. The gain margin is read at every
+    frequency where the *unwrapped* phase crosses -180 deg (mod 360), and the one
+    closest to critical is returned, with its sign: positive where the loop gain
+    may rise by ``gm_db`` before the loop goes critical, negative where it may
+    only fall by ``-gm_db`` (a conditionally stable loop, as every loop closed
+    around an unstable plant is; python-control's
+    :func:`control.stability_margins` makes the same choice). Where the closest
+    crossing is a rise and a fall is nearly as close, the rise is returned. PM is
+    taken at the gain crossover (:func:`crossover_frequency`). ``inf`` when there
     is no crossing.
+
+    Parameters
+    ----------
+    loop : control LTI or FrequencyFunction
+        Broken-loop response L.
+    omega : numpy.ndarray, optional
+        Frequencies [rad/s] (default: the metrics' dense grid).
+
+    Returns
+    -------
+    gm_db : float
+        Signed gain margin [dB] (see above).
+    pm_deg : float
+        Phase margin [deg].
+    w_180 : float
+        Frequency of the gain margin's phase crossing [rad/s].
+    w_c : float
+        Gain-crossover frequency [rad/s].
+
+    See Also
+    --------
+    nichols_margin : the distance from the critical point in both gain and phase.
+
+    Examples
+    --------
+    >>> import control
+    >>> gm, pm, w180, wc = gain_phase_margins(control.tf([8.0], [1, 3, 3, 1]))
+    >>> round(gm, 2)                          # 20 log10(8 / 8): critical at w = sqrt(3)
+    0.0
+    >>> L = control.tf([3.0, 1.5], [1.0, -1.0, 0.0])       # 3 (s + 0.5) / (s (s - 1)): unstable plant
+    >>> gm, _, w180, _ = gain_phase_margins(L)
+    >>> round(gm, 2), round(w180, 3)          # -20 log10(3) at w = 1/sqrt(2): only a gain reduction
+    (-9.54, 0.707)
     """
     w, mag, phase = _mag_phase(loop, omega)
     lw = np.log(w)
-    gm, w180 = float("inf"), float("nan")
-    best = None
+    margins = []
     for k in range(-3, 3):
         xs, _ = _crossings(lw, phase, -180.0 + 360.0 * k)
-        for x in xs:
-            if best is None or x < best:
-                best = x
-    if best is not None:
-        w180 = float(np.exp(best))
-        gm = float(-np.interp(best, lw, mag))
+        margins += [(float(-np.interp(x, lw, mag)), x) for x in xs]
+    gm, w180 = float("inf"), float("nan")
+    if margins:
+        # closest to critical in either direction; the rise first on a tie (round-off)
+        g, x = min(margins, key=lambda t: (round(abs(t[0]), 9), -np.sign(t[0])))
+        gm, w180 = g, float(np.exp(x))
     wc = crossover_frequency(loop, omega)
     if np.isnan(wc):
         return gm, float("inf"), w180, wc

@@ -17,6 +17,18 @@ from .smooth import LoopGrid, SolvePoint
 __all__ = []
 
 
+# a plant pole further right than this [1/s] makes the plant unstable (a pole at the origin,
+# e.g. an attitude integrator, computed a round-off to the right, does not)
+_UNSTABLE_POLE = 1e-6
+
+
+def _unstable(design):
+    """Whether the design's plant has a pole in the right half plane (a loop around it is conditionally stable)."""
+    system = design.plant.system
+    poles = system.poles() if hasattr(system, "poles") else np.roots(np.atleast_1d(system))
+    return bool(np.size(poles) and np.max(np.real(poles)) > _UNSTABLE_POLE)
+
+
 def _loop_factor(design, omega, index=0):
     s = 1j * omega
     q = design._g(s) * design._sensor(s)
@@ -77,6 +89,7 @@ class _Problem:
         self.settings = settings
         self.designs = designs
         self.q = [_loop_factor(d, settings.omega, k) for k, d in enumerate(designs)]
+        self.unstable_plant = any(_unstable(d) for d in designs)
         self._build(specs)
 
     def _build(self, specs):
@@ -128,7 +141,7 @@ class _Problem:
 
     def parameters(self, specs, crossover_min, phase_from, scale):
         w = self.settings.omega
-        point = SolvePoint(w, self.settings.backoff, crossover_min, phase_from)
+        point = SolvePoint(w, self.settings.backoff, crossover_min, phase_from, self.unstable_plant)
         onehot = lambda k: np.eye(1, w.size, min(k, w.size - 1)).ravel()
         phases = []
         k_anchor = min(int(np.searchsorted(w, crossover_min)), w.size - 1)

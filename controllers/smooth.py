@@ -86,12 +86,17 @@ class SolvePoint:
         constraint starts).
     phase_from : float
         The gain-margin constraint applies above ``phase_from * crossover_min``.
+    unstable_plant : bool
+        Whether a plant of the solve has a pole in the right half plane: its loop
+        can only be stable conditionally, so the gain-margin constraint accepts a
+        gain margin on either side of the critical point.
     """
 
     omega: np.ndarray
     backoff: float
     crossover_min: float
     phase_from: float
+    unstable_plant: bool = False
 
 
 class SmoothConstraint:
@@ -224,11 +229,17 @@ class NicholsEllipse(SmoothConstraint):
 
 @dataclass(frozen=True, repr=True)
 class GainMarginPastCritical(SmoothConstraint):
-    """Gain margin: no gain above -GM where the phase is past -180 deg (StbMgG1.GM).
+    """Gain margin: the loop gain stays GM away from 0 dB where the phase is past -180 deg (StbMgG1.GM).
 
     Applied above ``phase_from`` times the crossover boundary (below it, the
-    integrator's -180 deg region is allowed), it also rules out conditionally
-    stable loops.  The spec's ``level1`` is the margin [dB].
+    integrator's -180 deg region is allowed). For a stable plant the gain must lie
+    below -GM there, which also rules out conditionally stable loops. For an
+    unstable plant (:attr:`SolvePoint.unstable_plant`) a stable loop is
+    conditionally stable (Nyquist: it must encircle the critical point), so the
+    gain may lie below -GM or above +GM, the smooth form of ``|gain| >= GM``
+    (``(gain^2 - GM^2) / (2 GM) >= 0``, equal to the stable plant's form to first
+    order at gain = -GM); which side is stable is left to the eigenvalue check.
+    The spec's ``level1`` is the margin [dB].
 
     Attributes
     ----------
@@ -239,16 +250,18 @@ class GainMarginPastCritical(SmoothConstraint):
     transition_deg: float = 3.0
 
     def n_parameters(self, n_grid):
-        return n_grid + 1
+        return n_grid + 2
 
     def expressions(self, loop, p):
-        mask, gm = p[:-1], p[-1]
+        mask, gm, two_sided = p[:-2], p[-2], p[-1]
         beyond = 1.0 / (1.0 + ca.exp((loop.phase + np.pi) / np.radians(self.transition_deg)))
-        return [-mask * (loop.gain_db + gm) * beyond]
+        below = -(loop.gain_db + gm)
+        either = (loop.gain_db ** 2 - gm ** 2) / (2.0 * gm)
+        return [mask * ((1.0 - two_sided) * below + two_sided * either) * beyond]
 
     def parameters(self, spec, point):
         mask = (point.omega >= point.phase_from * point.crossover_min).astype(float)
-        return np.r_[mask, _level1(spec)]
+        return np.r_[mask, _level1(spec), float(point.unstable_plant)]
 
 
 @dataclass(frozen=True, repr=True)

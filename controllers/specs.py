@@ -181,7 +181,9 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
     from .hq.limits import BANDWIDTH_LIMITS, canonical_mte   # one definition; unknown MTE names raise
 
     nichols = NicholsEllipse(phase_axis=45.0, gain_axis=6.0)     # one definition: metric and NLP
-    gm = lambda d: m.gain_phase_margins(d.broken_loop())[0]
+    # the smallest gain change, up or down, that makes the loop critical: a loop around an
+    # unstable plant is conditionally stable, and its reduction margin is the one that counts
+    gm = lambda d: abs(m.gain_phase_margins(d.broken_loop())[0])
     pm = lambda d: m.gain_phase_margins(d.broken_loop())[1]
     mte = canonical_mte(mte)
     if limits is None:
@@ -198,7 +200,7 @@ def default_specs(crossover_min=2.0, drb_min=0.9, mte="all other", olop_stick=0.
              lambda d: m.nichols_margin(d.broken_loop(), phase_axis=nichols.phase_axis,
                                         gain_axis=nichols.gain_axis), "min", 0.0, -0.25, kind="hard",
              source="CONDUIT NicMgG1 (elliptical approximation)", smooth=nichols),
-        Spec("StbMgG1.GM", "gain margin, loop broken at mixer input", gm, "min", 6.0, 4.5,
+        Spec("StbMgG1.GM", "gain margin (rise or fall), loop broken at mixer input", gm, "min", 6.0, 4.5,
              kind="hard", units="dB", source="MIL-DTL-9490E", smooth=GainMarginPastCritical()),
         Spec("StbMgG1.PM", "phase margin, loop broken at mixer input", pm, "min", 45.0, 35.0,
              kind="hard", units="deg", source="MIL-DTL-9490E", smooth=PhaseMarginBand()),
