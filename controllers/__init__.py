@@ -18,6 +18,9 @@
     design_multi_axis(aircraft StateSpace): all four EMF loops (roll, pitch, yaw, heave) of one
                  MIMO aircraft, each axis's specs graded on the simultaneous closed loop
                  (MultiAxisEMF), OLOP with the actuators' rate/travel limits (ActuatorLimits)
+    multi_axis_report.write_multi_axis_report(result, folder, check=global_check(result)):
+                 the design's tables (axes, specs, limits, coupling, sweeps, global check)
+                 as CSV files and one HQ window per axis
 """
 
 from .plants import roll_design_plant, hover_roll_plant, DelayedLTI, first_order_actuator, second_order_actuator

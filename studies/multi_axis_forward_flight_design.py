@@ -66,11 +66,11 @@ from aircraft.helicopter import Helicopter, TrimCondition, linearize, trim
 from aircraft.helicopter.hold import hold_states, sideslip_yaw_channel
 from aircraft.inflow import DynamicClimb
 from controllers import PIDGains, design_multi_axis, specs_for
-from controllers.actuator_limits import LIMITS_ASSUMPTIONS
 from controllers.hq.selector import flight_regime
 from controllers.multi_axis_check import global_check
 from controllers.multi_axis_design import DEFAULT_SETTINGS
-from studies.multi_axis_hover_design import CHECK_SEED, limits_table
+from controllers.multi_axis_report import multi_axis_summary, write_multi_axis_report
+from studies.multi_axis_hover_design import CHECK_SEED
 
 __all__ = ["SPEED", "HELD", "AXES", "START_GAINS", "SETTINGS", "forward_flight_plant", "skipped_specs", "main"]
 
@@ -146,28 +146,14 @@ def main(argv=None):
     skipped.to_csv(out / "skipped_specs.csv", index=False)
     result = design_multi_axis(plant, axes=AXES, start_gains=START_GAINS, start_closed=True, settings=SETTINGS,
                                max_sweeps=args.max_sweeps, limits="hover", speed=regime, progress=True)
-    axes = result.to_pandas()
-    axes.to_csv(out / "axes.csv")
-    pd.concat([t.assign(axis=a) for a, t in result.specs.items()], ignore_index=True).to_csv(
-        out / "specs.csv", index=False)
-    limits_table(result).to_csv(out / "limits.csv", index=False)
-    pd.Series(LIMITS_ASSUMPTIONS, name="assumption").rename_axis("item").to_csv(out / "limits_assumptions.csv")
-    result.coupling().to_csv(out / "coupling.csv", index=False)
-    result.history.to_csv(out / "sweeps.csv", index=False)
-    for axis, fig in result.plot().items():
-        fig.savefig(out / f"hq_window_{axis}.png", dpi=110)
     print(f"{args.speed:g} m/s ({regime}), {', '.join(HELD)} held; open-loop unstable poles: "
           f"{', '.join(f'{p:.3g}' for p in unstable)}")
     print("skipped (not found printed):", ", ".join(sorted(set(skipped.spec))) if len(skipped) else "none")
-    print(axes[["K_phi", "K_Iphi", "K_p", "crossover", "drb", "drp_db", "gm_db", "pm_deg", "olop_margin_db",
-                "olop_onset", "specs_met", "unmet", "limiting"]].to_string(float_format=lambda v: f"{v:.3g}"))
-    print(f"converged: {result.converged} after {result.sweeps} sweep(s); design {result.wall_time:.0f} s")
+    print(multi_axis_summary(result))
     check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population,
                          seed=args.search_seed, progress=True)
-    check.to_csv(out / "global_check.csv")
-    print(check[["dmo_crossover", "search_crossover", "ratio", "beaten", "dmo_K_phi", "search_K_phi",
-                 "dmo_K_p", "search_K_p", "search_mimo_met", "search_mimo_crossover", "points",
-                 "feasible_points"]].to_string(float_format=lambda v: f"{v:.3g}"))
+    write_multi_axis_report(result, out, check=check)
+    print(multi_axis_summary(result, check, design=False))
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 

@@ -14,12 +14,14 @@ search over the same three gains, seeded differently from every seed the DMO use
 and asks whether it can beat the DMO's crossover (a tie is within 1 %).
 
 Files under ``results/multi_axis_hover_design/`` (coaxial) or
-``results/multi_axis_hover_design_single_rotor/``:
+``results/multi_axis_hover_design_single_rotor/``, written by
+:func:`controllers.multi_axis_report.write_multi_axis_report`:
 
 * ``axes.csv``: per axis the gains, crossover, DRB, DRP, GM/PM, OLOP margin and
   onset frequency, specs met, unmet and limiting specs (simultaneous closed loop);
 * ``specs.csv``: every spec of every axis on the simultaneous closed loop;
-* ``limits.csv``: the actuator limits and full-stick amplitude of each axis, with the assumptions;
+* ``limits.csv``: the actuator limits and full-stick amplitude of each axis;
+* ``limits_assumptions.csv``: the assumptions behind those limits, with their reasons;
 * ``coupling.csv``: inter-axis coupling of the closed loop (peak-gain and step ratios);
 * ``sweeps.csv``: the sequential loop closure, sweep by sweep;
 * ``global_check.csv``: DMO against the global search, per axis;
@@ -30,7 +32,6 @@ Run: ``rotorwake multi-axis-hover-design`` and ``rotorwake multi-axis-hover-desi
 from __future__ import annotations
 
 import argparse
-import math
 import time
 from pathlib import Path
 
@@ -41,10 +42,10 @@ from aircraft.helicopter import Helicopter, TrimCondition, linearize, trim
 from aircraft.helicopter.hold import hold_states
 from aircraft.inflow import DynamicClimb, PittPeters
 from controllers import design_multi_axis
-from controllers.actuator_limits import LIMITS_ASSUMPTIONS
 from controllers.multi_axis_check import global_check
+from controllers.multi_axis_report import multi_axis_summary, write_multi_axis_report
 
-__all__ = ["AIRCRAFT", "CHECK_SEED", "hover_plant", "limits_table", "main"]
+__all__ = ["AIRCRAFT", "CHECK_SEED", "hover_plant", "main"]
 
 
 #: aircraft -> (configuration, inflow model) of the hover plant
@@ -57,19 +58,6 @@ def hover_plant(aircraft="coaxial"):
     """The hover linear model (coaxial: Dynamic Climb; single rotor: Pitt-Peters), u and v held."""
     config, inflow = AIRCRAFT[aircraft]
     return hold_states(linearize(trim(Helicopter(config(), inflow()), TrimCondition(speed=0.0))), ["u", "v"])
-
-
-def limits_table(result):
-    rows = []
-    for axis, lim in result.limits.items():
-        cm = result.emf.loops[axis].command_model
-        rows.append({"axis": axis, "stick": result.emf.channels[axis].stick,
-                     "rate_limit_deg_s": math.degrees(lim.rate_limit),
-                     "travel_deg": math.degrees(lim.position_limit), "stick_amplitude": lim.stick_amplitude,
-                     "command_gain": cm.gain, "full_stick_command": lim.stick_amplitude * cm.gain})
-    table = pd.DataFrame(rows)
-    table.attrs["assumptions"] = LIMITS_ASSUMPTIONS
-    return table
 
 
 def main(argv=None):
@@ -91,26 +79,11 @@ def main(argv=None):
     pd.set_option("display.width", 200)
     t0 = time.perf_counter()
     result = design_multi_axis(hover_plant(args.aircraft), max_sweeps=args.max_sweeps, limits="hover", progress=True)
-    axes = result.to_pandas()
-    axes.to_csv(out / "axes.csv")
-    pd.concat([t.assign(axis=a) for a, t in result.specs.items()], ignore_index=True).to_csv(
-        out / "specs.csv", index=False)
-    limits = limits_table(result)
-    limits.to_csv(out / "limits.csv", index=False)
-    pd.Series(LIMITS_ASSUMPTIONS, name="assumption").rename_axis("item").to_csv(out / "limits_assumptions.csv")
-    result.coupling().to_csv(out / "coupling.csv", index=False)
-    result.history.to_csv(out / "sweeps.csv", index=False)
-    for axis, fig in result.plot().items():
-        fig.savefig(out / f"hq_window_{axis}.png", dpi=110)
-    print(axes[["K_phi", "K_Iphi", "K_p", "crossover", "drb", "drp_db", "gm_db", "pm_deg", "olop_margin_db",
-                "olop_onset", "specs_met", "unmet", "limiting"]].to_string(float_format=lambda v: f"{v:.3g}"))
-    print(f"converged: {result.converged} after {result.sweeps} sweep(s); design {result.wall_time:.0f} s")
+    print(multi_axis_summary(result))
     check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population,
                          seed=args.search_seed, progress=True)
-    check.to_csv(out / "global_check.csv")
-    print(check[["dmo_crossover", "search_crossover", "ratio", "beaten", "dmo_K_phi", "search_K_phi",
-                 "dmo_K_p", "search_K_p", "search_mimo_met", "search_mimo_crossover", "points",
-                 "feasible_points"]].to_string(float_format=lambda v: f"{v:.3g}"))
+    write_multi_axis_report(result, out, check=check)
+    print(multi_axis_summary(result, check, design=False))
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 
