@@ -35,16 +35,22 @@ The UH-60-like aircraft is the dissertation's (Appendix B.1: 17,150 lb, C_T
 0.0061, uniform blades of 1.73 ft chord, -17 deg linear twist, our own
 fuselage, tail and inertia assumptions), not a UH-60A (whose blades carry
 SC1095/SC1094R8 sections, a swept tip, -18 deg non-linear twist, a canted
-tail rotor and a scheduled stabilator); no published UH-60A level-flight trim
-numbers (controls, attitudes, power against speed) could be read from the
-sources reachable here, so the sweep is not compared with flight test.
+tail rotor and a scheduled stabilator). The only published UH-60A level-flight
+trim with readable numbers found is the GENHEL UH-60A simulation's power in
+hover and at 80 kt at 16,825 lb, sea level (NASA TM-100991, Table B.1; no
+control positions or attitudes): ``uh60a_validation.csv`` trims our aircraft at
+that weight and compares its power with the table's two power figures
+(engines' output and hub required torque), with the differences explained
+(:mod:`studies.analysis.uh60a_validation`). The collective, cyclics and pitch
+attitude stay unvalidated against the UH-60A.
 
 Writes ``results/trim_sweeps/``: per case ``trims_<case>.csv`` (controls [deg],
 attitudes [deg], power [kW], residual), ``eigenvalues_<case>.csv`` (poles with
 their dominant states), ``modes_<case>.csv`` (speed, track, mode name,
 eigenvalue, frequency [rad/s], damping, dominant states), ``trims_<case>.png``,
 ``eigenvalues_<case>.png`` and ``modes_<case>.png`` (root loci, frequency and
-damping against speed), ``propeller_200kt.csv``.
+damping against speed), ``propeller_200kt.csv``, ``uh60a_validation.csv`` and
+``uh60a_validation.png`` (power against NASA TM-100991's GENHEL UH-60A trims).
 
 Run: ``python -m studies.trim_sweeps``
 """
@@ -61,6 +67,7 @@ from aircraft.helicopter.mode_tracking import modes_over_speed
 from aircraft.helicopter.sweep import trim_sweep
 from aircraft.inflow import DynamicClimb, IsolatedRotors, PittPeters
 from studies.analysis.propeller_200kt import DISSERTATION_CT_200KT, propeller_models_at_200kt
+from studies.analysis.uh60a_validation import plot_uh60a_validation, uh60a_validation
 
 __all__ = ["CASES", "main"]
 
@@ -82,8 +89,10 @@ def main(out_dir="results/trim_sweeps"):
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     pd.set_option("display.width", 200)
+    tables = {}
     for case, (title, aircraft, inflow, speeds) in CASES.items():
         sweep = trim_sweep(Helicopter(aircraft(), inflow()), speeds)
+        tables[case] = sweep.table
         sweep.table.to_csv(out / f"trims_{case}.csv", index=False)
         sweep.eigenvalues.drop(columns=["pole"]).to_csv(out / f"eigenvalues_{case}.csv", index=False)
         sweep.plot(title).savefig(out / f"trims_{case}.png", dpi=120)
@@ -108,6 +117,12 @@ def main(out_dir="results/trim_sweeps"):
     print(prop.drop(columns=["CT_U_dissertation", "CT_L_dissertation"]).to_string(
         index=False, float_format=lambda v: f"{v:.5g}"))
     print(f"  dissertation: CT_U {DISSERTATION_CT_200KT[0]}, CT_L {DISSERTATION_CT_200KT[1]}")
+    validation = uh60a_validation()
+    validation.to_csv(out / "uh60a_validation.csv", index=False)
+    plot_uh60a_validation(validation, sweep=tables["uh60"]).savefig(out / "uh60a_validation.png", dpi=120)
+    print("[uh60] trimmed power at the reference weight against NASA TM-100991 Table B.1 (GENHEL UH-60A)")
+    print(validation[["condition", "speed_kt", "quantity", "ours", "measured", "difference",
+                      "relative_difference"]].to_string(index=False, float_format=lambda v: f"{v:.3g}"))
     return out
 
 
