@@ -43,6 +43,8 @@ class SingleRotor3State(InflowStructure):
     ----------
     frame : {"rotor", "printed"}
         Frame of the parameters (no effect for a single rotor).
+    rotors : (str,), optional
+        Name of the rotor in the signals (default ``("",)``: no suffix).
     """
 
     key = "single_rotor_3state"
