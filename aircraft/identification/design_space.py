@@ -433,12 +433,10 @@ def _design_structure(structure):
 def _for_rotors(structure, names):
     """``structure`` with the configuration's rotor names: renamed when it has its class's
     default names, else they must already be ``names`` (DesignSpaceError)."""
-    if tuple(structure.rotors) == tuple(names):
-        return structure
-    if tuple(structure.rotors) == tuple(type(structure).rotors):
-        return structure.with_rotors(names)
-    raise DesignSpaceError(f"structure rotors {tuple(structure.rotors)} do not match the configuration's "
-                           f"{tuple(names)}")
+    try:
+        return structure.for_rotors(names)
+    except ValueError as err:
+        raise DesignSpaceError(f"structure rotors do not match the configuration's: {err}") from None
 
 
 def _scheduler_kwargs(scheduler):

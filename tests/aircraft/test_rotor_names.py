@@ -193,3 +193,18 @@ def test_schedule_for_a_renamed_aircraft_has_its_names():
     b = sched.for_aircraft(cfg, ct=0.0096)
     np.testing.assert_array_equal(a.system.A, b.system.A)
     assert b.output_names == [_rename(x) for x in a.output_names]
+
+
+def test_structure_for_rotors_renames_defaults_only():
+    s = Coaxial12StateTilt()
+    assert s.for_rotors(("U", "L")) is s
+    assert s.for_rotors(NAMES).inputs[0] == "CT_upper"
+    with pytest.raises(ValueError, match="has rotors"):
+        Coaxial6State(rotors=("a", "b")).for_rotors(NAMES)
+
+
+def test_pipeline_refuses_a_structure_named_for_other_rotors_before_any_wake_run():
+    from aircraft.identification import PipelineError, identify_inflow
+    with pytest.raises(PipelineError, match="has rotors"):
+        identify_inflow(_renamed(coaxial_compound()), None, Coaxial6State(rotors=("a", "b")), cache_dir=None,
+                        progress=False)

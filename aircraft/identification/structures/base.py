@@ -188,6 +188,39 @@ class InflowStructure:
         new.rotors = check_rotor_names(rotors, len(type(self).rotors))
         return new
 
+    def for_rotors(self, rotors):
+        """This structure with an aircraft's rotor names (the pipeline's adaptation).
+
+        Parameters
+        ----------
+        rotors : sequence of str
+            The configuration's rotor names, upper first.
+
+        Returns
+        -------
+        InflowStructure
+            ``self`` when the names are already these; a renamed copy
+            (:meth:`with_rotors`) when the structure has its class's default names.
+
+        Raises
+        ------
+        ValueError
+            Names given explicitly to the structure that differ from ``rotors``, or
+            ``rotors`` unusable for it (count, repeats).
+
+        Examples
+        --------
+        >>> from aircraft.identification.structures import Coaxial6State
+        >>> Coaxial6State().for_rotors(("A", "B")).rotors
+        ('A', 'B')
+        """
+        names = check_rotor_names(rotors, len(type(self).rotors))
+        if names == tuple(self.rotors):
+            return self
+        if tuple(self.rotors) != tuple(type(self).rotors):
+            raise ValueError(f"structure {self.key} has rotors {tuple(self.rotors)}, the configuration {names}")
+        return self.with_rotors(names)
+
     # -- signals ---------------------------------------------------------------
     @property
     def controls(self):
