@@ -146,6 +146,17 @@ def test_dynamic_climb_aircraft_same_linear_model_new_names(inputs):
         assert b.input_labels[:3] == ["theta0_upper", "theta1s_upper", "theta1c_upper"]
 
 
+def test_mode_physics_reads_the_aircraft_rotor_names():
+    from aircraft.helicopter.mode_physics import classify_modes, state_group
+    settings = HelicopterSettings(n_span=4, n_average=2)
+    cfg = coaxial_compound()
+    ren = _renamed(cfg)
+    a = classify_modes(linearize(trim(Helicopter(cfg, DynamicClimb(), settings), TrimCondition())))
+    b = classify_modes(linearize(trim(Helicopter(ren, DynamicClimb(rotors=NAMES), settings), TrimCondition())))
+    assert list(b.physics) == list(a.physics)
+    assert state_group("beta1s_upper", NAMES) == "cyclic_flap" and state_group("beta1s_upper") == "other"
+
+
 def test_inflow_with_default_names_is_refused_by_a_renamed_aircraft():
     with pytest.raises(ValueError, match="do not match"):
         Helicopter(_renamed(coaxial_compound()), IsolatedRotors())
