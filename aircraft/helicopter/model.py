@@ -4,9 +4,10 @@ State vector (named): body ``u v w p q r phi theta psi`` (Eq. 7.7, SI, body axes
 then per rotor the flap MBC ``beta0, beta1c, beta1s, betad`` and their rates
 (``*_dot``), then the inflow model's states.  Inputs: the rotor controls
 ``theta0_U, theta1s_U, theta1c_U, theta0_L, theta1s_L, theta1c_L, theta_prop``
-(the suffixes are the configuration's rotor names; single rotor: ``theta0, theta1s, theta1c`` plus ``theta_tr``, the tail rotor's
-collective at 3/4 radius [rad] when the configuration has a ``tail_rotor``,
-otherwise an idealised yaw moment control, ``HelicopterSettings``).
+(the suffixes are the configuration's rotor names; single rotor: ``theta0, theta1s,
+theta1c`` plus ``theta_tr``, the tail rotor's collective at 3/4 radius [rad] when the
+configuration has a ``tail_rotor``, otherwise an idealised yaw moment control,
+``HelicopterSettings``).
 
 Each rotor's shaft is tilted forward by its ``shaft_tilt`` ``i_s``: body vectors
 go to the shaft frame by a rotation about body y (shaft x axis
