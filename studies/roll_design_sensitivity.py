@@ -32,7 +32,7 @@ from aircraft import coaxial_compound, uh60_single_rotor
 from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, linearize, trim
 from aircraft.helicopter.control_phase import cyclic_moment_shares, derive_control_phase
 from aircraft.helicopter.hold import hold_states
-from aircraft.inflow import DynamicClimb, IsolatedRotors, PittPeters
+from aircraft.inflow import DynamicClimb, IsolatedRotors, PittPeters, config_rotor_names
 from controllers import CommandModel, EMFDesign, InfeasibleDesignError, PIDGains, dmo, roll_design_plant, \
     second_order_actuator
 
@@ -59,13 +59,14 @@ def lift_offset_trims():
         cfg = replace(coaxial_compound(cruise=True), control_phase=phase)
         for knots in (100, 200):
             for difference in (0.0, 0.03):
-                tr = trim(Helicopter(cfg, IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
+                names = config_rotor_names(cfg)       # (upper, lower)
+                tr = trim(Helicopter(cfg, IsolatedRotors(rotors=names), HelicopterSettings(n_span=8, n_average=4)),
                           TrimCondition(speed=knots * KNOT, rotor_aoa=math.radians(2.0),
                                         lateral_cyclic_difference=difference))
                 row = {"pairing": label, "speed_kt": knots, "lateral_cyclic_difference_rad": difference}
                 row.update({f"{n}_deg": math.degrees(v) for n, v in zip(tr.helicopter.input_names, tr.u)})
-                row.update({f"lift_offset_{r}": -tr.loads[f"CL_{r}"] / tr.loads[f"CT_{r}"] for r in ("U", "L")})
-                row.update({f"CT_{r}": tr.loads[f"CT_{r}"] for r in ("U", "L")})
+                row.update({f"lift_offset_{r}": -tr.loads[f"CL_{r}"] / tr.loads[f"CT_{r}"] for r in names})
+                row.update({f"CT_{r}": tr.loads[f"CT_{r}"] for r in names})
                 rows.append(row)
     return pd.DataFrame(rows)
 

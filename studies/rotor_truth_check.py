@@ -73,7 +73,7 @@ def models(wake_trim):
     loads = np.array([o["CT_U"], 0, 0, o["CT_L"], 0, 0])
     inflow = np.array([o[k] for k in ("lam0_U", "lam1s_U", "lam1c_U", "lam0_L", "lam1s_L", "lam1c_L")])
     pub = IdentifiedInflow.from_published(in_rotor_frames(COAXIAL_HOVER_6STATE))
-    out = {"(b) ID 6-state, Eq. 5.3": IdentifiedInflow(pub.system, ("U", "L"), loads, inflow, name=pub.name)}
+    out = {"(b) ID 6-state, Eq. 5.3": IdentifiedInflow(pub.system, pub.rotors, loads, inflow, name=pub.name)}
     ours = _our_wake_model(o)
     if ours is not None:
         out["(b) ID 6-state, our wake"] = ours

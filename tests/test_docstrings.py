@@ -42,7 +42,7 @@ KNOWN_GAPS = {
         "aircraft.helicopter.linearize.modes",
         "aircraft.inflow.base.flap_rate_names",
         "aircraft.inflow.base.inflow_names", "aircraft.inflow.base.load_names",
-        "aircraft.inflow.base.rotor_suffix", "aircraft.inflow.pitt_peters.IsolatedRotors",
+        "aircraft.inflow.base.rotor_suffix",
         "aircraft.inflow.pitt_peters.pitt_peters_matrices",
         "aircraft.wake.far_wake.far_wake_segments", "aircraft.wake.outputs.flap_rate_mbc",
         "aircraft.wake.sweeps.sweep_inputs",

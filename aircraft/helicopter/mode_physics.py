@@ -41,19 +41,32 @@ _ROTOR = ("coning", "reactionless", "cyclic_flap")
 _INFLOW = ("inflow_mean", "inflow_cyclic", "inflow")
 
 
-def state_group(name):
+#: Rotor names whose suffix :func:`state_group` ignores unless told others (coaxial_compound's).
+_DEFAULT_ROTORS = ("U", "L")
+
+
+def _suffix_pattern(rotors):
+    """``_(U|L)$`` for the rotor names ``rotors`` (empty names carry no suffix)."""
+    names = [re.escape(r) for r in rotors if r]
+    return f"_({'|'.join(names)})$" if names else r"(?!)$"
+
+
+def state_group(name, rotors=_DEFAULT_ROTORS):
     """Group of a state name (rotor suffix ``_U``/``_L`` ignored); ``"other"`` if none.
 
     Parameters
     ----------
     name : str
+    rotors : sequence of str
+        Rotor names whose suffix is ignored (default ``("U", "L")``; an aircraft's
+        are ``[r.name for r in config.rotors]``).
 
     Returns
     -------
     str
         A key of :data:`STATE_GROUPS` or ``"other"`` (e.g. controller or Padé states).
     """
-    base = re.sub(r"_(U|L)$", "", name.strip())
+    base = re.sub(_suffix_pattern(rotors), "", name.strip())
     for group, pattern in STATE_GROUPS.items():
         if re.search(pattern, base):
             return group
@@ -68,7 +81,7 @@ def _participation(a):
     return lam, part, right
 
 
-def _whirl(labels, vec):
+def _whirl(labels, vec, rotors=_DEFAULT_ROTORS):
     """Sense of the tip-path-plane whirl of a mode (eigenvector ``vec``, Im(lambda) > 0).
 
     With beta1c ~ Re(c e^{i w t}), beta1s ~ Re(s e^{i w t}) the high point of the
@@ -79,7 +92,7 @@ def _whirl(labels, vec):
     """
     num = den = 0.0
     for i, name in enumerate(labels):
-        m = re.match(r"^beta1c(_U|_L)?$", name.strip())
+        m = re.match(rf"^beta1c({_suffix_pattern(rotors)[:-1]})?$", name.strip())
         if not m:
             continue
         sfx = m.group(1) or ""
@@ -151,9 +164,11 @@ def classify_modes(sys, omega=None):
     """
     if omega is None and hasattr(sys, "trim"):
         omega = sys.trim.helicopter.config.rotors[0].omega
+    # the aircraft's rotor names where the model carries its trim (coaxial_compound's otherwise)
+    rotors = tuple(r.name for r in sys.trim.helicopter.config.rotors) if hasattr(sys, "trim") else _DEFAULT_ROTORS
     a = np.asarray(sys.A, float)
     labels = list(sys.state_labels)
-    groups = [state_group(s) for s in labels]
+    groups = [state_group(s, rotors) for s in labels]
     lam, part, right = _participation(a)
     rows = []
     for k, l in enumerate(lam):
@@ -166,7 +181,7 @@ def classify_modes(sys, omega=None):
         wn = abs(l)
         rows.append({"real": l.real, "imag": abs(l.imag), "frequency": wn,
                      "damping": -l.real / wn if wn > 0 else np.nan,
-                     "physics": _label(l, share, omega, _whirl(labels, right[:, k])),
+                     "physics": _label(l, share, omega, _whirl(labels, right[:, k], rotors)),
                      "dominant_states": ", ".join(f"{labels[i]} ({part[i, k]:.2f})" for i in top),
                      **{f"share_{g}": v for g, v in share.items()}})
     return pd.DataFrame(rows).sort_values("frequency").reset_index(drop=True)

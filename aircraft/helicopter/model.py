@@ -4,9 +4,10 @@ State vector (named): body ``u v w p q r phi theta psi`` (Eq. 7.7, SI, body axes
 then per rotor the flap MBC ``beta0, beta1c, beta1s, betad`` and their rates
 (``*_dot``), then the inflow model's states.  Inputs: the rotor controls
 ``theta0_U, theta1s_U, theta1c_U, theta0_L, theta1s_L, theta1c_L, theta_prop``
-(single rotor: ``theta0, theta1s, theta1c`` plus ``theta_tr``, the tail rotor's
-collective at 3/4 radius [rad] when the configuration has a ``tail_rotor``,
-otherwise an idealised yaw moment control, ``HelicopterSettings``).
+(the suffixes are the configuration's rotor names; single rotor: ``theta0, theta1s,
+theta1c`` plus ``theta_tr``, the tail rotor's collective at 3/4 radius [rad] when the
+configuration has a ``tail_rotor``, otherwise an idealised yaw moment control,
+``HelicopterSettings``).
 
 Each rotor's shaft is tilted forward by its ``shaft_tilt`` ``i_s``: body vectors
 go to the shaft frame by a rotation about body y (shaft x axis
@@ -60,7 +61,9 @@ class Helicopter:
     ----------
     config : AircraftConfig
     inflow : InflowModel
-        Its rotor names must match the configuration's.
+        Its rotor names must match the configuration's (e.g. ``DynamicClimb(rotors=...)``
+        with :func:`~aircraft.inflow.base.config_rotor_names` of ``config``); the
+        flap, inflow and control signals carry these names.
     settings : HelicopterSettings
     """
 
@@ -80,8 +83,9 @@ class Helicopter:
         self.n_rigid = len(self.state_names)
         self.state_names += list(inflow.state_names)
         if config.is_coaxial:
-            self.input_names = ["theta0_U", "theta1s_U", "theta1c_U", "theta0_L", "theta1s_L",
-                                "theta1c_L", "theta_prop"]
+            # the controls carry the configuration's rotor names ("U", "L": DESIGN.md's)
+            self.input_names = [f"{c}{rotor_suffix(r.name)}" for r in config.rotors
+                                for c in ("theta0", "theta1s", "theta1c")] + ["theta_prop"]
         else:
             self.input_names = ["theta0", "theta1s", "theta1c", "theta_tr"]
         inertia = np.array([[config.Ixx, 0, -config.Ixz], [0, config.Iyy, 0], [-config.Ixz, 0, config.Izz]])

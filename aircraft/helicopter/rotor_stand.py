@@ -111,7 +111,8 @@ class ShaftFixedRotors:
             loads = extra["loads"]
             res.append([(sum(loads[3 * r] for r in range(nrot)) - ct) / ct])
             if nrot == 2:
-                res.append([(extra["CQ_U"] - extra["CQ_L"]) / max(abs(extra["CQ_U"]), 1e-6)])
+                cq_upper, cq_lower = (extra[f"CQ{rotor_suffix(rm.config.name)}"] for rm in heli.rotors)
+                res.append([(cq_upper - cq_lower) / max(abs(cq_upper), 1e-6)])
             return np.concatenate([np.ravel(r) for r in res])
 
         rc = heli.rotors[0].config

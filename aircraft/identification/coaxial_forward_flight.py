@@ -58,7 +58,10 @@ def _aircraft_trim(config, speed, rotor_aoa, lateral_cyclic_difference):
     """The aircraft's trim with Isolated Rotors at ``speed`` [m/s], ``rotor_aoa`` [rad]."""
     from aircraft.helicopter import Helicopter, HelicopterSettings, TrimCondition, trim
     from aircraft.inflow import IsolatedRotors
-    return trim(Helicopter(_config(config), IsolatedRotors(), HelicopterSettings(n_span=8, n_average=4)),
+    from aircraft.inflow.base import config_rotor_names
+    config = _config(config)
+    return trim(Helicopter(config, IsolatedRotors(rotors=config_rotor_names(config)),
+                           HelicopterSettings(n_span=8, n_average=4)),
                 TrimCondition(speed=_speed(speed), rotor_aoa=rotor_aoa,
                               lateral_cyclic_difference=lateral_cyclic_difference))
 
@@ -86,7 +89,8 @@ def aircraft_thrust_at(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, late
         trim's tolerance of 1e-4).
     """
     tr = _aircraft_trim(config, speed, rotor_aoa, lateral_cyclic_difference)
-    return 2.0 * float(f"{0.5 * (tr.loads['CT_U'] + tr.loads['CT_L']):.3g}")
+    upper, lower = (f"CT_{r.name}" for r in tr.helicopter.config.rotors)
+    return 2.0 * float(f"{0.5 * (tr.loads[upper] + tr.loads[lower]):.3g}")
 
 
 def aircraft_lift_offset(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, lateral_cyclic_difference=0.03):
@@ -112,7 +116,8 @@ def aircraft_lift_offset(config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, la
         below the 1e-4 tolerance of the 200 kt wake trim).
     """
     tr = _aircraft_trim(config, speed, rotor_aoa, lateral_cyclic_difference)
-    return tuple(round(-float(tr.loads[f"CL_{r}"]) / float(tr.loads[f"CT_{r}"]), 3) + 0.0 for r in ("U", "L"))
+    names = (r.name for r in tr.helicopter.config.rotors)      # upper, lower
+    return tuple(round(-float(tr.loads[f"CL_{r}"]) / float(tr.loads[f"CT_{r}"]), 3) + 0.0 for r in names)
 
 
 def forward_trim_request(ct, *, lift_offset=0.0, tol=1e-4, max_iter=30):
@@ -173,10 +178,12 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         System thrust coefficient of the wake trim [-]; default
         :func:`aircraft_thrust_at` (what the aircraft needs there).
     structure : CoaxialForward12State, optional
-        Default the full Eq. 6.5 pattern (180 parameters at the start).
+        Default the full Eq. 6.5 pattern (180 parameters at the start), with the
+        configuration's rotor names.
     settings : IdentificationSettings, optional
         Default: the pipeline's defaults with a lower-rotor lateral doublet
-        (``theta1s_L``, as Figs. 6.29-6.33) of 0.035 rad (2 deg).
+        (``theta1s_L`` with the default rotor names, as Figs. 6.29-6.33) of
+        0.035 rad (2 deg).
     n_jobs : int
         Wake worker processes.
     cache_dir : str or None
@@ -212,11 +219,13 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     import time
     from .structures.coaxial_forward import CoaxialForward12State
     from .pipeline import (IdentificationSettings, _verify, identification_hash, identify_inflow)
+    from aircraft.inflow.base import config_rotor_names
     config = _config(config)
-    structure = structure if structure is not None else CoaxialForward12State()
+    names = config_rotor_names(config)          # (upper, lower): the signals' rotor names
+    structure = structure if structure is not None else CoaxialForward12State(rotors=names)
     if not isinstance(structure, CoaxialForward12State):
         raise TypeError(f"structure must be a CoaxialForward12State, got {type(structure).__name__}")
-    settings = settings or IdentificationSettings(doublet_control="theta1s_L", doublet_amplitude=0.035)
+    settings = settings or IdentificationSettings(doublet_control=f"theta1s_{names[1]}", doublet_amplitude=0.035)
     if isinstance(max_reduction_steps, bool) or not isinstance(max_reduction_steps, int) \
             or max_reduction_steps < 0:
         raise ValueError(f"max_reduction_steps must be an integer >= 0, got {max_reduction_steps!r}")

@@ -64,9 +64,10 @@ def spaced_config(config=None, spacing=0.14):
     Parameters
     ----------
     config : aircraft.AircraftConfig, optional
-        Coaxial configuration with rotors ``("U", "L")`` (default
-        :func:`aircraft.configs.coaxial_compound`). Only the lower hub's vertical
-        position changes (``dataclasses.replace``); the upper hub stays.
+        Coaxial configuration: two rotors with distinct names, the upper one first
+        (default :func:`aircraft.configs.coaxial_compound`, rotors ``"U"``, ``"L"``).
+        Only the lower hub's vertical position changes (``dataclasses.replace``);
+        the upper hub and the rotor names stay.
     spacing : float
         Hub-to-hub distance over the upper rotor's radius, ``h/R`` [-], > 0.
 
@@ -79,13 +80,20 @@ def spaced_config(config=None, spacing=0.14):
     Raises
     ------
     DesignSpaceError
-        If ``config`` is not a coaxial pair or ``spacing`` is not a positive number.
+        If ``config`` is not a coaxial pair (two rotors, distinct names) or
+        ``spacing`` is not a positive number.
+
+    Examples
+    --------
+    >>> from aircraft.configs import coaxial_compound
+    >>> cfg = spaced_config(coaxial_compound(), 0.2)
+    >>> upper, lower = cfg.rotors
+    >>> (upper.name, lower.name), round((lower.hub_position[2] - upper.hub_position[2]) / upper.radius, 9)
+    (('U', 'L'), 0.2)
     """
     from aircraft.configs import coaxial_compound
     config = coaxial_compound() if config is None else config
-    names = tuple(getattr(r, "name", None) for r in getattr(config, "rotors", ()))
-    if names != ("U", "L"):
-        raise DesignSpaceError(f"spaced_config needs a coaxial configuration with rotors ('U', 'L'), got {names}")
+    _coaxial_names(config)
     if isinstance(spacing, bool) or not isinstance(spacing, (int, float, np.floating)) \
             or not math.isfinite(spacing) or spacing <= 0:
         raise DesignSpaceError(f"spacing must be a positive number of radii, got {spacing!r}")
@@ -97,6 +105,17 @@ def spaced_config(config=None, spacing=0.14):
     x, y, _ = lower.hub_position
     moved = dataclasses.replace(lower, hub_position=(x, y, z_lower))
     return dataclasses.replace(config, rotors=(upper, moved), name=f"{config.name}, h/R {float(spacing):g}")
+
+
+def _coaxial_names(config):
+    """The (upper, lower) rotor names of a coaxial configuration; DesignSpaceError otherwise."""
+    from aircraft.inflow.base import check_rotor_names
+    names = tuple(getattr(r, "name", None) for r in (getattr(config, "rotors", None) or ()))
+    try:
+        return check_rotor_names(names, 2, argument="config rotor names", error=DesignSpaceError)
+    except DesignSpaceError as err:
+        raise DesignSpaceError(f"a coaxial configuration (two rotors, upper first, distinct names) is needed: "
+                               f"{err}") from None
 
 
 def _grid_axis(values, name):
@@ -173,6 +192,10 @@ class DesignSpaceResult:
         """The structure of the points (the free-mass coaxial 6-state when none was recorded)."""
         return _STRUCTURE if self.structure is None else self.structure
 
+    def _thrust_names(self):
+        """The trim thrust signals of the rotors, ``CT_U, CT_L`` with the default names."""
+        return [n for n in self.fitted_structure.loads if n.startswith("CT")]
+
     def point(self, spacing, ct) -> DesignPoint:
         """The grid point at (``spacing`` [-], ``ct`` [-]); DesignSpaceError if there is none."""
         for p in self.points:
@@ -189,8 +212,10 @@ class DesignSpaceResult:
 
         Columns: spacing, ct, parameter, value, status, cramer_rao_pct,
         insensitivity_pct, J_ave, trusted, CT_U, CT_L (the wake trim's), wall_s,
-        error. A failed point has one row with its error and no parameter.
+        error (``CT_<rotor>`` with the structure's rotor names). A failed point has
+        one row with its error and no parameter.
         """
+        thrusts = self._thrust_names()
         rows = []
         for p in self.points:
             base = {"spacing": p.spacing, "ct": p.ct, "wall_s": round(p.wall_s, 1)}
@@ -204,16 +229,17 @@ class DesignSpaceResult:
                 r = params.loc[name]
                 rows.append({**base, "parameter": name, "value": float(r.value), "status": r.status,
                              "cramer_rao_pct": float(r.cramer_rao_pct), "insensitivity_pct": float(r.insensitivity_pct),
-                             "J_ave": m.J_ave, "trusted": m.trusted, "CT_U": float(o["CT_U"]),
-                             "CT_L": float(o["CT_L"]), "error": p.error})
+                             "J_ave": m.J_ave, "trusted": m.trusted, **{n: float(o[n]) for n in thrusts},
+                             "error": p.error})
         cols = ["spacing", "ct", "parameter", "value", "status", "cramer_rao_pct", "insensitivity_pct", "J_ave",
-                "trusted", "CT_U", "CT_L", "wall_s", "error"]
+                "trusted", *thrusts, "wall_s", "error"]
         return pd.DataFrame(rows).reindex(columns=cols)
 
     def summary_table(self) -> pd.DataFrame:
         """Wide table: one row per point, the key values, J_ave, max CR %, max insensitivity %,
         trusted, the trim thrusts, error, ``trust_failures`` (the trust check's reasons,
         joined by " | "; empty when trusted) and wall_s."""
+        thrusts = self._thrust_names()
         rows = []
         for p in self.points:
             row = {"spacing": p.spacing, "ct": p.ct}
@@ -224,7 +250,7 @@ class DesignSpaceResult:
                 row.update({n: float(params.loc[n, "value"]) for n in KEY_PARAMETERS})
                 row.update({"J_ave": m.J_ave, "max_cramer_rao_pct": float(free.cramer_rao_pct.max()),
                             "max_insensitivity_pct": float(free.insensitivity_pct.max()), "trusted": m.trusted,
-                            "CT_U": float(m.trim.outputs["CT_U"]), "CT_L": float(m.trim.outputs["CT_L"]),
+                            **{n: float(m.trim.outputs[n]) for n in thrusts},
                             "error": p.error, "trust_failures": _trust_failures(m)})
             else:
                 row.update({"trusted": False, "error": p.error})
@@ -398,10 +424,19 @@ def _design_structure(structure):
         inst = get_structure(structure)
     except (ValueError, TypeError) as err:
         raise DesignSpaceError(f"structure: {err}") from err
-    if getattr(inst, "form", None) != "mltau" or tuple(inst.rotors) != ("U", "L") or len(inst.outputs) != 6:
-        raise DesignSpaceError(f"structure must be a coaxial 6-state M/Lbar/tau structure with rotors ('U', 'L') "
+    if getattr(inst, "form", None) != "mltau" or len(inst.rotors) != 2 or len(inst.outputs) != 6:
+        raise DesignSpaceError(f"structure must be a coaxial 6-state M/Lbar/tau structure (two rotors) "
                                f"(a schedule interpolates M, Lbar, tau), got {structure!r}")
     return inst, (structure if isinstance(structure, str) else inst.key)
+
+
+def _for_rotors(structure, names):
+    """``structure`` with the configuration's rotor names: renamed when it has its class's
+    default names, else they must already be ``names`` (DesignSpaceError)."""
+    try:
+        return structure.for_rotors(names)
+    except ValueError as err:
+        raise DesignSpaceError(f"structure rotors do not match the configuration's: {err}") from None
 
 
 def _scheduler_kwargs(scheduler):
@@ -433,7 +468,8 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, structure=DEFAULT_S
         same six swashplate sweeps whatever the structure, so the wake runs are shared.
     config : aircraft.AircraftConfig, optional
         Coaxial configuration whose lower hub is moved (default
-        :func:`aircraft.configs.coaxial_compound`).
+        :func:`aircraft.configs.coaxial_compound`); its rotor names name the
+        signals (a structure with its class's default names is renamed to them).
     condition : aircraft.wake.FlightCondition, optional
         Flight condition (default hover).
     settings : IdentificationSettings, optional
@@ -473,6 +509,7 @@ def identify_design_space(spacings=SPACINGS, cts=THRUSTS, *, structure=DEFAULT_S
     extra = _scheduler_kwargs(scheduler)
     struct, label = _design_structure(structure)
     configs = {s: spaced_config(config, s) for s in spacings}   # validates config before any run
+    struct = _for_rotors(struct, _coaxial_names(next(iter(configs.values()))))
     from aircraft.wake.trim import WakeTrimError     # the wake (numba) only once the input is valid
     from flightid import IdentificationError         # e.g. records too short for the sweep band
     t0 = time.perf_counter()

@@ -200,6 +200,12 @@ def identify_inflow_multisine(config, condition=None, structure="coaxial_6state"
     condition = condition or FlightCondition()
     structure = get_structure(structure)
     rotor_names = tuple(r.name for r in config.rotors)
+    if len(rotor_names) > 1 and len(rotor_names) == len(structure.rotors):
+        # a structure with its default names takes the aircraft's (same numbers, its signals)
+        try:
+            structure = structure.for_rotors(rotor_names)
+        except ValueError as err:
+            raise PipelineError(str(err)) from None
     if len(rotor_names) != len(structure.rotors) or (len(rotor_names) > 1 and rotor_names != structure.rotors):
         raise PipelineError(f"structure {structure.key} is for rotors {structure.rotors}; "
                             f"the configuration has {rotor_names}")

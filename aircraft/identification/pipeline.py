@@ -534,6 +534,12 @@ def identify_inflow(config, condition=None, structure="single_rotor_3state", *, 
     condition = condition or FlightCondition()
     structure = get_structure(structure)
     rotor_names = tuple(r.name for r in config.rotors)
+    if len(rotor_names) > 1 and len(rotor_names) == len(structure.rotors):
+        # a structure with its default names takes the aircraft's (same numbers, its signals)
+        try:
+            structure = structure.for_rotors(rotor_names)
+        except ValueError as err:
+            raise PipelineError(str(err)) from None
     expected = ("",) if len(rotor_names) == 1 else structure.rotors
     if len(rotor_names) != len(structure.rotors) or (len(rotor_names) > 1 and rotor_names != expected):
         raise PipelineError(f"structure {structure.key} is for rotors {structure.rotors}; "

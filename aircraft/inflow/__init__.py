@@ -10,8 +10,8 @@
       └─ ScheduledInflow                      (scheduled.py: identified models interpolated in spacing, C_T)
     published.py: the dissertation's printed identified models, as reference data
 """
-from .base import (InflowModel, RotorOperatingPoint, flap_rate_names, inflow_names,
-                   load_names, rotor_suffix)
+from .base import (InflowModel, RotorOperatingPoint, check_rotor_names, config_rotor_names, flap_rate_names,
+                   inflow_names, load_names, rotor_suffix)
 from .pitt_peters import (KR_ANALYTICAL, InflowError, IsolatedRotors, PittPeters, mlbar_from_statespace,
                           momentum_inflow, pitt_peters_matrices)
 from .coaxial import ClimbingLowerRotor, DynamicClimb
@@ -19,7 +19,8 @@ from .identified import IdentifiedInflow, mltau_statespace
 from .scheduled import ScheduledInflow
 from . import published
 
-__all__ = ["InflowModel", "RotorOperatingPoint", "flap_rate_names", "inflow_names",
+__all__ = ["InflowModel", "RotorOperatingPoint", "check_rotor_names", "config_rotor_names", "flap_rate_names",
+           "inflow_names",
            "load_names", "rotor_suffix", "KR_ANALYTICAL", "InflowError", "IsolatedRotors", "PittPeters",
            "mlbar_from_statespace", "momentum_inflow", "pitt_peters_matrices",
            "ClimbingLowerRotor", "DynamicClimb", "IdentifiedInflow", "mltau_statespace", "ScheduledInflow", "published"]

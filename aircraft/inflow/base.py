@@ -46,12 +46,99 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["RotorOperatingPoint", "InflowModel", "rotor_suffix", "load_names",
-           "inflow_names", "flap_rate_names"]
+           "inflow_names", "flap_rate_names", "check_rotor_names", "config_rotor_names"]
 
 
 def rotor_suffix(name: str) -> str:
     """Signal suffix for a rotor name: ``"U" -> "_U"``, ``"" -> ""``."""
     return f"_{name}" if name else ""
+
+
+def check_rotor_names(rotors, n_rotors=None, *, argument="rotors", error=ValueError) -> tuple:
+    """Rotor names validated as signal suffixes: a tuple of distinct strings.
+
+    Parameters
+    ----------
+    rotors : sequence of str
+        Rotor names, the upper (first) rotor first, e.g. ``("U", "L")``; a single
+        rotor may be unnamed, ``("",)``.
+    n_rotors : int, optional
+        Number of rotors the caller's model is built for.
+    argument : str
+        Name of the argument, for the error message.
+    error : type
+        Exception class raised (a subclass of ValueError).
+
+    Returns
+    -------
+    tuple of str
+
+    Raises
+    ------
+    ValueError
+        (``error``) A bare string, a name that is not a string, an empty name
+        beside others, a name with ``_`` or whitespace (the suffix would not be
+        recognisable in a signal name such as ``lam1s_<name>``), repeated names,
+        or the wrong number of names.
+
+    Examples
+    --------
+    >>> check_rotor_names(["upper", "lower"], 2)
+    ('upper', 'lower')
+    >>> check_rotor_names(("U", "U"), 2)
+    Traceback (most recent call last):
+    ...
+    ValueError: rotors must be distinct rotor names, got ('U', 'U')
+    """
+    if isinstance(rotors, str):
+        raise error(f"{argument} must be a sequence of rotor names, e.g. ('U', 'L'), not the string {rotors!r}")
+    try:
+        names = tuple(rotors)
+    except TypeError:
+        raise error(f"{argument} must be a sequence of rotor names, got {rotors!r}") from None
+    if not names:
+        raise error(f"{argument} must name at least one rotor")
+    for r in names:
+        if not isinstance(r, str):
+            raise error(f"{argument} must hold strings, got {r!r} in {names}")
+        if (r == "" and len(names) > 1) or "_" in r or any(c.isspace() for c in r):
+            raise error(f"{argument}: rotor name {r!r} cannot be a signal suffix (empty beside other rotors, "
+                        f"or containing '_' or whitespace), got {names}")
+    if len(set(names)) != len(names):
+        raise error(f"{argument} must be distinct rotor names, got {names}")
+    if n_rotors is not None and len(names) != n_rotors:
+        raise error(f"{argument} must name {n_rotors} rotor(s) for this model, got {len(names)}: {names}")
+    return names
+
+
+def config_rotor_names(config) -> tuple:
+    """Rotor names of an aircraft configuration, the upper (first) rotor first.
+
+    Parameters
+    ----------
+    config : aircraft.AircraftConfig
+        Its ``rotors[i].name``.
+
+    Returns
+    -------
+    tuple of str
+
+    Raises
+    ------
+    ValueError
+        If ``config`` has no rotors or its names are not valid signal suffixes
+        (:func:`check_rotor_names`).
+
+    Examples
+    --------
+    >>> from aircraft.configs import coaxial_compound
+    >>> config_rotor_names(coaxial_compound())
+    ('U', 'L')
+    """
+    rotors = getattr(config, "rotors", None)
+    if not rotors:
+        raise ValueError(f"config must be an aircraft configuration with rotors, got {type(config).__name__}")
+    return check_rotor_names([getattr(r, "name", None) for r in rotors], argument="config rotor names")
 
 
 def load_names(rotors) -> list[str]:

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .pitt_peters import KR_ANALYTICAL, PittPeters
+from .base import check_rotor_names
+from .pitt_peters import KR_ANALYTICAL, InflowError, PittPeters
 
 __all__ = ["ClimbingLowerRotor", "DynamicClimb"]
 
@@ -37,10 +38,19 @@ class ClimbingLowerRotor(PittPeters):
     climb_fraction : float
         Fraction of the upper rotor's trimmed lam0 taken as the lower rotor's climb
         (1 in §2.2.2.3).
+    rotors : (str, str)
+        Names of the upper and the lower rotor, in this order (default ``("U", "L")``,
+        the :func:`~aircraft.configs.coaxial_compound` names); give the aircraft's
+        (:func:`~aircraft.inflow.base.config_rotor_names`) for another naming.
+
+    Raises
+    ------
+    InflowError
+        If ``rotors`` is not two distinct names.
     """
 
-    def __init__(self, kr=0.0, climb_fraction=1.0):
-        super().__init__(rotors=("U", "L"), kr=kr)
+    def __init__(self, kr=0.0, climb_fraction=1.0, *, rotors=("U", "L")):
+        super().__init__(rotors=check_rotor_names(rotors, 2, error=InflowError), kr=kr)
         self.climb_fraction = float(climb_fraction)
         self.frozen_climb = None
 
@@ -95,6 +105,21 @@ class DynamicClimb(PittPeters):
         the dissertation's Dynamic Climb model uses "standard analytical values"
         for wake distortion (§2.2.2.4); the model then takes the full
         tip-path-plane rates as inputs. ``kr=0`` gives the model without them.
+    rotors : (str, str)
+        Names of the upper and the lower rotor, in this order (default ``("U", "L")``,
+        the :func:`~aircraft.configs.coaxial_compound` names); give the aircraft's
+        (:func:`~aircraft.inflow.base.config_rotor_names`) for another naming.
+
+    Raises
+    ------
+    InflowError
+        If ``rotors`` is not two distinct names.
+
+    Examples
+    --------
+    >>> from aircraft.inflow import DynamicClimb
+    >>> DynamicClimb(rotors=("upper", "lower")).state_names[:4]
+    ['lam0_upper', 'lam1s_upper', 'lam1c_upper', 'lam0_lower']
 
     Notes
     -----
@@ -103,8 +128,8 @@ class DynamicClimb(PittPeters):
     (see :mod:`aircraft.inflow.pitt_peters` on the sign of mu_c in Eqs. 2.4-2.5).
     """
 
-    def __init__(self, upper_fraction=0.86, lower_fraction=1.13, kr=KR_ANALYTICAL):
-        super().__init__(rotors=("U", "L"), kr=kr)
+    def __init__(self, upper_fraction=0.86, lower_fraction=1.13, kr=KR_ANALYTICAL, *, rotors=("U", "L")):
+        super().__init__(rotors=check_rotor_names(rotors, 2, error=InflowError), kr=kr)
         self.upper_fraction = float(upper_fraction)
         self.lower_fraction = float(lower_fraction)
 

@@ -43,13 +43,54 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["FrameError", "LATERAL_SIGNALS", "frame_signs", "convert_frames", "COAXIAL_DIRECTIONS"]
+__all__ = ["FrameError", "LATERAL_SIGNALS", "frame_signs", "convert_frames", "COAXIAL_DIRECTIONS",
+           "rotor_directions"]
 
 #: Signal-name stems that change sign with the sense of rotation (sine / roll axis).
 LATERAL_SIGNALS = ("lam1s", "lam1sN", "lam1sF", "CL", "beta1s_dot", "beta1s", "theta1s")
 
-#: Senses of rotation of :func:`aircraft.configs.coaxial_compound` (upper CCW, lower CW).
+#: Senses of rotation of :func:`aircraft.configs.coaxial_compound` (upper CCW, lower CW);
+#: another aircraft's are :func:`rotor_directions` of its configuration.
 COAXIAL_DIRECTIONS = {"U": 1, "L": -1}
+
+
+def rotor_directions(config):
+    """Sense of rotation per rotor name of an aircraft, upper (first) rotor first.
+
+    Parameters
+    ----------
+    config : aircraft.AircraftConfig
+        Its rotors' ``name`` and ``direction`` (+1 counter-clockwise seen from above).
+
+    Returns
+    -------
+    dict
+        ``{name: direction}`` in the configuration's rotor order, as
+        :func:`frame_signs` takes it (the first rotor sets the default reference).
+
+    Raises
+    ------
+    FrameError
+        Rotor names that are not distinct signal suffixes, or a direction other than +-1.
+
+    Examples
+    --------
+    >>> from aircraft.configs import coaxial_compound
+    >>> rotor_directions(coaxial_compound()) == COAXIAL_DIRECTIONS
+    True
+    """
+    from .base import check_rotor_names
+    rotors = getattr(config, "rotors", None) or ()
+    names = check_rotor_names([getattr(r, "name", None) for r in rotors], argument="config rotor names",
+                              error=FrameError)
+    out = {}
+    for name, r in zip(names, rotors):
+        d = getattr(r, "direction", None)
+        if d not in (1, -1):
+            raise FrameError(f"direction of rotor {name!r} must be +1 or -1, got {d!r}")
+        out[name] = int(d)
+    return out
+
 
 class FrameError(ValueError):
     """Raised for signal names or rotor directions the frame conversion cannot place."""

@@ -23,10 +23,33 @@ from __future__ import annotations
 import control
 import numpy as np
 
-from .base import InflowModel, RotorOperatingPoint, flap_rate_names, inflow_names, load_names
+from .base import (InflowModel, RotorOperatingPoint, check_rotor_names, flap_rate_names, inflow_names,
+                   load_names, rotor_suffix)
 from .pitt_peters import InflowError
 
 __all__ = ["IdentifiedInflow", "mltau_statespace"]
+
+
+def _rotors_of(outputs):
+    """Rotor names of inflow outputs ``lam0_<r>, lam1s_<r>, lam1c_<r>, ...`` (``("",)`` for
+    ``lam0, lam1s, lam1c``), or None when they are not in that form."""
+    if not outputs or len(outputs) % 3:
+        return None
+    rotors = []
+    for k in range(0, len(outputs), 3):
+        first = str(outputs[k])
+        if first == "lam0":
+            r = ""
+        elif first.startswith("lam0_"):
+            r = first[len("lam0_"):]
+        else:
+            return None
+        rotors.append(r)
+    try:
+        rotors = check_rotor_names(rotors)
+    except ValueError:
+        return None
+    return rotors if list(outputs) == inflow_names(rotors) else None
 
 
 def _sysname(name):
@@ -168,9 +191,10 @@ class IdentifiedInflow(InflowModel):
         flap-rate names ``beta1s_dot_U, beta1c_dot_U, …`` [rad/s]), outputs the
         inflow names, time in seconds, strictly proper, stable.
     rotors : tuple of str, optional
-        Rotor names, ``("U", "L")`` (coaxial) or ``("",)`` (single rotor). Default:
-        inferred from the output names (``("U", "L")`` if they are not recognised,
-        which then raises a naming error).
+        Rotor names, upper first, e.g. ``("U", "L")`` (coaxial) or ``("",)`` (single
+        rotor). Default: inferred from the output names ``lam0_<r>, lam1s_<r>,
+        lam1c_<r>`` (``("U", "L")`` if they are not recognised, which then raises a
+        naming error).
     loads_ref : array_like, optional
         Loads (C_T, C_L, C_M per rotor) at the identification trim (default zeros).
     inflow_ref : array_like, optional
@@ -194,10 +218,11 @@ class IdentifiedInflow(InflowModel):
     def __init__(self, system, rotors=None, loads_ref=None, inflow_ref=None, name="identified"):
         sys = control.ss(system)
         if rotors is None:
-            # infer from the output names: ("",) for lam0, lam1s, lam1c; ("U", "L") for the coaxial
-            outs = list(sys.output_labels)
-            rotors = next((r for r in (("",), ("U", "L")) if outs == inflow_names(r)), ("U", "L"))
-        self.rotors = tuple(rotors)
+            # infer from the output names: ("",) for lam0, lam1s, lam1c; the suffixes
+            # of lam0_<r>, lam1s_<r>, lam1c_<r> otherwise; unrecognised: ("U", "L"),
+            # which the checks below then report as a naming error
+            rotors = _rotors_of(list(sys.output_labels)) or ("U", "L")
+        self.rotors = check_rotor_names(rotors, error=InflowError)
         loads = load_names(self.rotors)
         rates = flap_rate_names(self.rotors)
         inputs = list(sys.input_labels)
@@ -270,6 +295,52 @@ class IdentifiedInflow(InflowModel):
         sys.trim_inputs = np.concatenate([np.asarray(loads, float), np.zeros(len(self.rate_names))])
         sys.trim_outputs = self.inflow(x0, loads, ops)
         return sys
+
+    def with_rotors(self, rotors):
+        """The same model with its rotors renamed (same matrices, new signal names).
+
+        Flies a model identified on (or printed for) rotors ``U, L`` on an aircraft
+        whose rotors carry other names, in the same order (upper first).
+
+        Parameters
+        ----------
+        rotors : sequence of str
+            New rotor names, as many as :attr:`rotors`, e.g.
+            :func:`~aircraft.inflow.base.config_rotor_names` of the aircraft.
+
+        Returns
+        -------
+        IdentifiedInflow
+
+        Raises
+        ------
+        InflowError
+            Wrong number of names, repeated or unusable names; or a subclass with
+            further rotor-named signals (e.g. tilt inputs), which this does not rename.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> m = IdentifiedInflow.from_matrices(np.eye(6), 0.1 * np.eye(6), omega=40.0)
+        >>> m.with_rotors(("upper", "lower")).system.output_labels[3]
+        'lam0_lower'
+        """
+        if type(self) is not IdentifiedInflow:
+            raise InflowError(f"with_rotors renames the signals of an IdentifiedInflow; a {type(self).__name__} "
+                              "has further rotor-named signals: rebuild it with the new rotors")
+        new = check_rotor_names(rotors, len(self.rotors), error=InflowError)
+        old_sfx = [rotor_suffix(r) for r in self.rotors]
+
+        def rename(label):
+            for o, n in zip(old_sfx, new):
+                if o and label.endswith(o):
+                    return label[:-len(o)] + rotor_suffix(n)
+            return label
+        sys = self.system
+        inputs = load_names(new) + (flap_rate_names(new) if self.uses_flap_rates else [])
+        renamed = control.ss(sys.A, sys.B, sys.C, sys.D, inputs=inputs, outputs=inflow_names(new),
+                             states=[rename(s) for s in sys.state_labels], name=sys.name)
+        return IdentifiedInflow(renamed, new, self.loads_ref.copy(), self.inflow_ref.copy(), self.name)
 
     # -- constructors -----------------------------------------------------------
     @classmethod

@@ -86,7 +86,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import fsolve
 
-from .base import InflowModel, RotorOperatingPoint, rotor_suffix
+from .base import InflowModel, RotorOperatingPoint, check_rotor_names, rotor_suffix
 
 __all__ = ["PittPeters", "IsolatedRotors", "pitt_peters_matrices", "momentum_inflow",
            "mlbar_from_statespace", "InflowError", "KR_ANALYTICAL"]
@@ -309,7 +309,17 @@ class PittPeters(InflowModel):
 
 
 class IsolatedRotors(PittPeters):
-    """Two non-interfering Pitt-Peters rotors ("Isolated Rotor" model, §2.2.2.2)."""
+    """Two non-interfering Pitt-Peters rotors ("Isolated Rotor" model, §2.2.2.2).
 
-    def __init__(self, kr=0.0):
-        super().__init__(rotors=("U", "L"), kr=kr)
+    Parameters
+    ----------
+    kr : float
+        Wake-distortion parameter K_R (Eq. 2.29).
+    rotors : (str, str)
+        Names of the upper and the lower rotor (default ``("U", "L")``, the
+        :func:`~aircraft.configs.coaxial_compound` names); give the aircraft's
+        (:func:`~aircraft.inflow.base.config_rotor_names`) for another naming.
+    """
+
+    def __init__(self, kr=0.0, *, rotors=("U", "L")):
+        super().__init__(rotors=check_rotor_names(rotors, 2, error=InflowError), kr=kr)

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .base import InflowModel, inflow_names, load_names
+from .base import InflowModel, check_rotor_names, inflow_names, load_names
 from .identified import IdentifiedInflow
 from .pitt_peters import InflowError
 
@@ -91,7 +91,8 @@ class ScheduledInflow(InflowModel):
     ct : float
         System thrust coefficient of this model [-], inside the grid.
     rotors : tuple of str
-        Rotor names (default ``("U", "L")``).
+        Rotor names, upper first (default ``("U", "L")``; :meth:`for_aircraft`
+        takes the aircraft's).
     pade_order : int
         Padé order of each non-zero delay.
     name : str
@@ -110,7 +111,7 @@ class ScheduledInflow(InflowModel):
                  rotors=("U", "L"), pade_order=2, name="scheduled inflow", trusted=None):
         self.spacings = _axis(spacings, "spacings")
         self.cts = _axis(cts, "cts")
-        self.rotors = tuple(rotors)
+        self.rotors = check_rotor_names(rotors, error=InflowError)
         n = 3 * len(self.rotors)
         shape = (self.spacings.size, self.cts.size)
         self._grid = {}
@@ -197,23 +198,30 @@ class ScheduledInflow(InflowModel):
         Returns
         -------
         ScheduledInflow
+            Its signals carry the configuration's rotor names (upper first), which
+            may differ from the schedule's (same matrices, renamed).
 
         Raises
         ------
         InflowError
-            If ``config`` does not have this schedule's rotors, or its spacing or
-            thrust is outside the grid.
+            If ``config`` does not have as many rotors as this schedule (with valid,
+            distinct names), or its spacing or thrust is outside the grid.
         """
-        rotors = tuple(getattr(r, "name", None) for r in getattr(config, "rotors", ()))
-        if rotors != self.rotors:
+        rotors = tuple(getattr(r, "name", None) for r in (getattr(config, "rotors", None) or ()))
+        if len(rotors) != len(self.rotors):
             raise InflowError(f"config rotors {rotors} do not match the schedule's {self.rotors}")
+        rotors = check_rotor_names(rotors, argument="config rotor names", error=InflowError)
         upper, lower = config.rotors
         spacing = abs(float(lower.hub_position[2]) - float(upper.hub_position[2])) / float(upper.radius)
         if ct is None:
             if not getattr(config, "trim_ct", None):
                 raise InflowError("config has no trim_ct: give ct")
             ct = float(sum(config.trim_ct))
-        return self.at(spacing, ct)
+        if rotors == self.rotors:
+            return self.at(spacing, ct)
+        return ScheduledInflow(self.spacings, self.cts, omega=self.omega, spacing=spacing, ct=ct,
+                               rotors=rotors, pade_order=self.pade_order, name=self.base_name,
+                               trusted=self.trusted, **self._grid)
 
     def to_pandas(self) -> pd.DataFrame:
         """The grid nodes: spacing, ct, trusted and the trim thrusts of each node."""

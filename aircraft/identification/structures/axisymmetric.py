@@ -69,6 +69,8 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
         and fit uses these values and leaves them fixed, and a fitted model reports
         them with status "fixed". For example :data:`PITT_PETERS_COLLECTIVE_MASS`
         (registered as ``"coaxial_6state_axisymmetric_pp_collective_mass"``).
+    rotors : (str, str), optional
+        Upper and lower rotor names of the signals (default ``("U", "L")``).
     """
 
     key = "coaxial_6state_axisymmetric"
@@ -77,8 +79,8 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
                                                                 "41", "44", "52", "53", "55", "56")) + tuple(
         f"t{ij}" for ij in ("11", "14", "22", "25", "41", "44", "52", "55"))
 
-    def __init__(self, frame="rotor", bands=((1.0, 10.0), (4.0, 20.0)), a_priori=None):
-        super().__init__(frame)
+    def __init__(self, frame="rotor", bands=((1.0, 10.0), (4.0, 20.0)), a_priori=None, *, rotors=None):
+        super().__init__(frame, rotors=rotors)
         checked = []
         for band in bands:
             try:
@@ -117,7 +119,7 @@ class Coaxial6StateAxisymmetric(Coaxial6State):
 
     def __repr__(self):
         extra = f", a_priori={self.a_priori!r}" if self.a_priori else ""
-        return f"{type(self).__name__}(frame={self.frame!r}, bands={self.bands!r}{extra})"
+        return f"{type(self).__name__}(frame={self.frame!r}, bands={self.bands!r}{extra}{self._rotors_repr()})"
 
     def build(self, initial, omega, fixed=()):
         """The flightid structure from ``initial`` values, the :attr:`a_priori` values

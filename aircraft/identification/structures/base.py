@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from aircraft.inflow.base import flap_rate_names, inflow_names, load_names
+from aircraft.inflow.base import check_rotor_names, flap_rate_names, inflow_names, load_names
 
 __all__ = ["InflowStructure", "low_frequency_gain", "low_frequency_points", "PITT_PETERS_M11",
            "PITT_PETERS_M22"]
@@ -121,6 +121,18 @@ class InflowStructure:
     ----------
     frame : {"rotor", "printed"}
         Frame of the parameters: ``"rotor"`` (default) or ``"printed"``.
+    rotors : sequence of str, optional
+        Rotor names of the signals, upper (first) rotor first, as many as the
+        structure has rotors (default: the class's, ``("U", "L")`` for the coaxial
+        structures); e.g. the aircraft's
+        (:func:`~aircraft.inflow.base.config_rotor_names`). Parameter names do
+        not change: they number rows and columns.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``frame``; ``rotors`` of the wrong count, repeated, or not
+        usable as signal suffixes.
 
     Attributes
     ----------
@@ -139,10 +151,75 @@ class InflowStructure:
     form = "mltau"
     uses_flap_rates = False
 
-    def __init__(self, frame="rotor"):
+    def __init__(self, frame="rotor", *, rotors=None):
         if frame not in ("rotor", "printed"):
             raise ValueError(f"frame must be 'rotor' or 'printed', got {frame!r}")
         self.frame = frame
+        if rotors is not None:
+            # an instance attribute shadows the class default only when names are given
+            self.rotors = check_rotor_names(rotors, len(type(self).rotors))
+
+    def with_rotors(self, rotors):
+        """A copy of this structure whose signals carry other rotor names.
+
+        Parameters
+        ----------
+        rotors : sequence of str
+            As many names as :attr:`rotors`, upper first.
+
+        Returns
+        -------
+        InflowStructure
+            Same parameters and matrices; renamed controls, inputs and outputs.
+
+        Raises
+        ------
+        ValueError
+            As for the ``rotors`` argument of the class.
+
+        Examples
+        --------
+        >>> from aircraft.identification.structures import Coaxial6State
+        >>> Coaxial6State().with_rotors(("upper", "lower")).outputs[3]
+        'lam0_lower'
+        """
+        import copy
+        new = copy.copy(self)
+        new.rotors = check_rotor_names(rotors, len(type(self).rotors))
+        return new
+
+    def for_rotors(self, rotors):
+        """This structure with an aircraft's rotor names (the pipeline's adaptation).
+
+        Parameters
+        ----------
+        rotors : sequence of str
+            The configuration's rotor names, upper first.
+
+        Returns
+        -------
+        InflowStructure
+            ``self`` when the names are already these; a renamed copy
+            (:meth:`with_rotors`) when the structure has its class's default names.
+
+        Raises
+        ------
+        ValueError
+            Names given explicitly to the structure that differ from ``rotors``, or
+            ``rotors`` unusable for it (count, repeats).
+
+        Examples
+        --------
+        >>> from aircraft.identification.structures import Coaxial6State
+        >>> Coaxial6State().for_rotors(("A", "B")).rotors
+        ('A', 'B')
+        """
+        names = check_rotor_names(rotors, len(type(self).rotors))
+        if names == tuple(self.rotors):
+            return self
+        if tuple(self.rotors) != tuple(type(self).rotors):
+            raise ValueError(f"structure {self.key} has rotors {tuple(self.rotors)}, the configuration {names}")
+        return self.with_rotors(names)
 
     # -- signals ---------------------------------------------------------------
     @property
@@ -209,10 +286,17 @@ class InflowStructure:
 
     def spec(self):
         """What identifies this structure in a settings hash (dict of str)."""
-        return {"key": self.key, "frame": self.frame, "form": self.form, "protected": list(self.protected)}
+        out = {"key": self.key, "frame": self.frame, "form": self.form, "protected": list(self.protected)}
+        if tuple(self.rotors) != tuple(type(self).rotors):   # absent by default: the hashes stay
+            out["rotors"] = list(self.rotors)
+        return out
+
+    def _rotors_repr(self):
+        """``", rotors=(...)"`` when the names are not the class's, else empty."""
+        return "" if tuple(self.rotors) == tuple(type(self).rotors) else f", rotors={tuple(self.rotors)!r}"
 
     def __repr__(self):
-        return f"{type(self).__name__}(frame={self.frame!r})"
+        return f"{type(self).__name__}(frame={self.frame!r}{self._rotors_repr()})"
 
     # -- to implement ----------------------------------------------------------
     def build(self, initial, omega, fixed=()):

@@ -89,6 +89,8 @@ class CoaxialForward12State(InflowStructure):
         responds): a first-order model with full 6 x 6 couplings, 36 + 36 parameters. Step 3 of §6.4.3 ("a
         state-space inflow model that is similar to that found in Chap. 5");
         for small data sets and tests. Default False (Eq. 6.5 in full).
+    rotors : (str, str), optional
+        Upper and lower rotor names of the signals (default ``("U", "L")``).
     """
 
     key = "coaxial_forward_12state"
@@ -106,8 +108,8 @@ class CoaxialForward12State(InflowStructure):
     #: so that the reduction runs to completion.
     fit_options = {"max_nfev": 150, "jacobian": "analytic"}
 
-    def __init__(self, frame="rotor", near_wake_only=False):
-        super().__init__(frame)
+    def __init__(self, frame="rotor", near_wake_only=False, *, rotors=None):
+        super().__init__(frame, rotors=rotors)
         if not isinstance(near_wake_only, (bool, np.bool_)):
             raise TypeError(f"near_wake_only must be True or False, got {near_wake_only!r}")
         self.near_wake_only = bool(near_wake_only)
@@ -118,7 +120,8 @@ class CoaxialForward12State(InflowStructure):
         return {**super().spec(), "near_wake_only": self.near_wake_only, "fit_options": dict(self.fit_options)}
 
     def __repr__(self):
-        return f"CoaxialForward12State(frame={self.frame!r}, near_wake_only={self.near_wake_only})"
+        return (f"CoaxialForward12State(frame={self.frame!r}, near_wake_only={self.near_wake_only}"
+                f"{self._rotors_repr()})")
 
     @property
     def states(self):

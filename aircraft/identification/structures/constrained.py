@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from .base import PITT_PETERS_M11
-from .hover import _EQ62_INPUTS, _F_FREE, Coaxial12State
+from .hover import _F_FREE, Coaxial12State, _eq62_inputs
 
 __all__ = ["Coaxial12StateConstrained", "PITT_PETERS_COLLECTIVE_GAIN", "VARIANTS"]
 
@@ -54,6 +54,8 @@ class Coaxial12StateConstrained(Coaxial12State):
     without : iterable of str
         Parameters held at zero.
     frame : {"rotor", "printed"}
+    rotors : (str, str), optional
+        Upper and lower rotor names of the signals (default ``("U", "L")``).
 
     Raises
     ------
@@ -64,8 +66,8 @@ class Coaxial12StateConstrained(Coaxial12State):
 
     key = "coaxial_12state_constrained"
 
-    def __init__(self, collective_far_wake=True, a_priori=None, without=(), frame="rotor"):
-        super().__init__(frame=frame, tied=True, delays=True, far_wake_loads=True)
+    def __init__(self, collective_far_wake=True, a_priori=None, without=(), frame="rotor", *, rotors=None):
+        super().__init__(frame=frame, tied=True, delays=True, far_wake_loads=True, rotors=rotors)
         self.collective_far_wake = bool(collective_far_wake)
         rows_off = () if self.collective_far_wake else _COLLECTIVE_FAR_ROWS
         self._f_entries = [(i, j) for i, j in _F_FREE if i not in rows_off]
@@ -103,7 +105,7 @@ class Coaxial12StateConstrained(Coaxial12State):
 
     def __repr__(self):
         return (f"Coaxial12StateConstrained(collective_far_wake={self.collective_far_wake}, "
-                f"a_priori={self.a_priori!r}, without={self.without!r})")
+                f"a_priori={self.a_priori!r}, without={self.without!r}{self._rotors_repr()})")
 
     def _entry(self, p, i, j):
         """Pattern entry (i, j) (1-based): a name, or a constant when held or removed."""
@@ -151,7 +153,8 @@ class Coaxial12StateConstrained(Coaxial12State):
         G62 = [[0] * 10 for _ in range(12)]
         for i, j in self._g_free:
             G62[i - 1][j - 1] = self._entry("g", i, j)
-        G = [[row[_EQ62_INPUTS.index(c)] for c in self.inputs] for row in G62]
+        eq62 = _eq62_inputs(self.rotors)
+        G = [[row[eq62.index(c)] for c in self.inputs] for row in G62]
         C = np.zeros((6, 12))
         for k in range(6):
             C[k, 2 * k] = C[k, 2 * k + 1] = 1.0

@@ -43,6 +43,8 @@ class SingleRotor3State(InflowStructure):
     ----------
     frame : {"rotor", "printed"}
         Frame of the parameters (no effect for a single rotor).
+    rotors : (str,), optional
+        Name of the rotor in the signals (default ``("",)``: no suffix).
     """
 
     key = "single_rotor_3state"
@@ -85,6 +87,14 @@ class Coaxial6State(InflowStructure):
     frame : {"rotor", "printed"}
         ``"rotor"``: our per-rotor frames (default); ``"printed"``: the
         dissertation's common frame.
+    rotors : (str, str), optional
+        Upper and lower rotor names of the signals (default ``("U", "L")``), e.g.
+        the aircraft's (:func:`~aircraft.inflow.base.config_rotor_names`).
+
+    Examples
+    --------
+    >>> Coaxial6State(rotors=("upper", "lower")).inputs[:3]
+    ['CT_upper', 'CL_upper', 'CM_upper']
     """
 
     key = "coaxial_6state"
@@ -158,6 +168,11 @@ class Coaxial6State(InflowStructure):
 _EQ62_INPUTS = ["CT_U", "CL_U", "beta1s_dot_U", "CM_U", "beta1c_dot_U",
                 "CT_L", "CL_L", "beta1s_dot_L", "CM_L", "beta1c_dot_L"]
 
+
+def _eq62_inputs(rotors):
+    """Eq. 6.2's input order with the signals of rotors ``rotors`` (upper, lower)."""
+    return [f"{stem}_{r}" for r in rotors for stem in ("CT", "CL", "beta1s_dot", "CM", "beta1c_dot")]
+
 def _g_free():
     """G's free entries: per rotor's rows (lam0N, lam0F, lam1sN, lam1sF, lam1cN, lam1cF):
     lam0N <- both CT; lam0F <- the lower rotor's CT (as printed); lam1sN <- CL, b1s;
@@ -227,6 +242,9 @@ class Coaxial12State(InflowStructure):
         rotor's cyclic inflow reverses sign over ~2 s after a cyclic step (late /
         early response -3.7, ``results/coaxial_quasi_steady/settling.csv``): a
         slow far-wake response to the loads themselves. Default False (Eq. 6.3).
+    rotors : (str, str), optional
+        Upper and lower rotor names of the signals (default ``("U", "L")``); the
+        parameter names (Eq. 6.2's rows and columns) do not change.
     """
 
     key = "coaxial_12state"
@@ -235,8 +253,8 @@ class Coaxial12State(InflowStructure):
     uses_flap_rates = True
     protected = tuple(f"f{k}_{k}" for k in range(1, 13))
 
-    def __init__(self, frame="rotor", tied=True, delays=False, far_wake_loads=False):
-        super().__init__(frame)
+    def __init__(self, frame="rotor", tied=True, delays=False, far_wake_loads=False, *, rotors=None):
+        super().__init__(frame, rotors=rotors)
         self.tied = bool(tied)
         self.delays = bool(delays)
         self.far_wake_loads = bool(far_wake_loads)
@@ -263,7 +281,8 @@ class Coaxial12State(InflowStructure):
 
     def __repr__(self):
         extra = ", far_wake_loads=True" if self.far_wake_loads else ""
-        return f"Coaxial12State(frame={self.frame!r}, tied={self.tied}, delays={self.delays}{extra})"
+        return (f"Coaxial12State(frame={self.frame!r}, tied={self.tied}, delays={self.delays}{extra}"
+                f"{self._rotors_repr()})")
 
     def _tau_pattern(self):
         """6 x 10 delay names (canonical inputs) or None: the 6-state's pattern on the loads."""
@@ -301,7 +320,8 @@ class Coaxial12State(InflowStructure):
         for i, j in self._g_free:
             G62[i - 1][j - 1] = self._name("g", i, j)
         # columns to the canonical input order (loads, then flap rates)
-        G = [[row[_EQ62_INPUTS.index(c)] for c in self.inputs] for row in G62]
+        eq62 = _eq62_inputs(self.rotors)
+        G = [[row[eq62.index(c)] for c in self.inputs] for row in G62]
         C = np.zeros((6, 12))
         for k in range(6):
             C[k, 2 * k] = C[k, 2 * k + 1] = 1.0

@@ -49,8 +49,11 @@ from .constrained import (PITT_PETERS_COLLECTIVE_GAIN, Coaxial12StateConstrained
 __all__ = ["Coaxial12StateTilt", "TiltFGCStructure", "TILT_GAIN_NAMES", "ON_AXIS_TILT_GAINS", "TILT_VARIANT",
            "tilt_inflow_from_record"]
 
-#: Every tilt gain: on-axis (``kon``) and cross-axis (``kx``) per (to, from) rotor pair.
+#: Every tilt gain: on-axis (``kon``) and cross-axis (``kx``) per (to, from) rotor pair,
+#: ``U`` the upper (first) and ``L`` the lower rotor whatever the signals' rotor names.
 TILT_GAIN_NAMES = tuple(f"{k}_{r}{q}" for r in "UL" for q in "UL" for k in ("kon", "kx"))
+#: The rotors' letters in the tilt gains' names, by position (upper, lower).
+_GAIN_ROTORS = ("U", "L")
 
 #: The on-axis tilt gains, the default: the fit's flap-rate responses are the on-axis
 #: ones (lambda1s / beta1s_dot, lambda1c / beta1c_dot of every rotor pair, §6.4.3), so a
@@ -99,8 +102,8 @@ class TiltFGCStructure(FGCStructure):
         return np.linalg.eigvals(a[:n, :n])
 
 
-_NEAR_1S = {"U": 3, "L": 9}          # 1-based rows of the near-wake lam1s states (Eq. 6.2)
-_NEAR_1C = {"U": 5, "L": 11}
+_NEAR_1S = (3, 9)          # 1-based rows of the near-wake lam1s states (Eq. 6.2), upper then lower
+_NEAR_1C = (5, 11)
 
 
 class Coaxial12StateTilt(Coaxial12StateConstrained):
@@ -112,6 +115,9 @@ class Coaxial12StateTilt(Coaxial12StateConstrained):
         The tilt gains to fit (default :data:`ON_AXIS_TILT_GAINS`); the others are
         zero. Cross-axis gains (``kx_*``) are only seen by a fit that includes the
         cross-axis flap-rate responses, which the staged plan does not.
+    rotors : (str, str), optional
+        Upper and lower rotor names of the signals (default ``("U", "L")``); the
+        tilt gains keep their names (``U`` upper, ``L`` lower).
     **constrained
         As :class:`Coaxial12StateConstrained` (default :data:`TILT_VARIANT`).
 
@@ -123,8 +129,8 @@ class Coaxial12StateTilt(Coaxial12StateConstrained):
 
     key = "coaxial_12state_tilt"
 
-    def __init__(self, tilt=ON_AXIS_TILT_GAINS, **constrained):
-        super().__init__(**(constrained or TILT_VARIANT))
+    def __init__(self, tilt=ON_AXIS_TILT_GAINS, *, rotors=None, **constrained):
+        super().__init__(**(constrained or TILT_VARIANT), rotors=rotors)
         tilt = [tilt] if isinstance(tilt, str) else list(tilt)
         bad = [n for n in tilt if n not in TILT_GAIN_NAMES]
         if bad:
@@ -153,11 +159,11 @@ class Coaxial12StateTilt(Coaxial12StateConstrained):
     def _tilt_entries(self):
         """``{(row, column): (name, sign)}`` of the tilt gains in F (0-based; columns 12-15)."""
         out = {}
-        for r in self.rotors:
-            for iq, q in enumerate(self.rotors):
+        for ir, r in enumerate(_GAIN_ROTORS):
+            for iq, q in enumerate(_GAIN_ROTORS):
                 c1s, c1c = 12 + 2 * iq, 13 + 2 * iq
                 mirror = -1.0 if (r != q and self.frame == "rotor") else 1.0
-                s_row, c_row = _NEAR_1S[r] - 1, _NEAR_1C[r] - 1
+                s_row, c_row = _NEAR_1S[ir] - 1, _NEAR_1C[ir] - 1
                 for name, entries in ((f"kon_{r}{q}", [(s_row, c1s, 1.0), (c_row, c1c, mirror)]),
                                       (f"kx_{r}{q}", [(s_row, c1c, 1.0), (c_row, c1s, -mirror)])):
                     if name in self.tilt:
