@@ -172,8 +172,10 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     ct : float, optional
         System thrust coefficient of the wake trim [-]; default
         :func:`aircraft_thrust_at` (what the aircraft needs there).
-    structure : CoaxialForward12State, optional
-        Default the full Eq. 6.5 pattern (180 parameters at the start).
+    structure : InflowStructure, optional
+        Default :class:`CoaxialForward12State`, the full Eq. 6.5 pattern (180
+        parameters at the start); any coaxial structure without flap-rate inputs
+        (e.g. :class:`CoaxialForward6State`) is identified from the same records.
     settings : IdentificationSettings, optional
         Default: the pipeline's defaults with a lower-rotor lateral doublet
         (``theta1s_L``, as Figs. 6.29-6.33) of 0.035 rad (2 deg).
@@ -213,9 +215,14 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     from .structures.coaxial_forward import CoaxialForward12State
     from .pipeline import (IdentificationSettings, _verify, identification_hash, identify_inflow)
     config = _config(config)
+    from .structures.base import InflowStructure
     structure = structure if structure is not None else CoaxialForward12State()
-    if not isinstance(structure, CoaxialForward12State):
-        raise TypeError(f"structure must be a CoaxialForward12State, got {type(structure).__name__}")
+    # any coaxial load-driven structure: the sweeps (its excitations) are then the
+    # 12-state's six swashplate controls, so that the wake records are the same
+    if not isinstance(structure, InflowStructure) or tuple(structure.rotors) != ("U", "L") \
+            or structure.uses_flap_rates:
+        raise TypeError(f"structure must be a coaxial InflowStructure without flap-rate inputs (e.g. "
+                        f"CoaxialForward12State), got {structure!r}")
     settings = settings or IdentificationSettings(doublet_control="theta1s_L", doublet_amplitude=0.035)
     if isinstance(max_reduction_steps, bool) or not isinstance(max_reduction_steps, int) \
             or max_reduction_steps < 0:
