@@ -46,6 +46,39 @@ class _CoaxialForwardFirstOrder(InflowStructure):
     protected = ("m11", "m22", "m44", "m55")
     interference = False
 
+    def __init__(self, frame="rotor", without_lam0_cm=False):
+        super().__init__(frame)
+        if not isinstance(without_lam0_cm, (bool, np.bool_)):
+            raise TypeError(f"without_lam0_cm must be True or False, got {without_lam0_cm!r}")
+        self.without_lam0_cm = bool(without_lam0_cm)
+
+    @property
+    def pairs(self):
+        """The responses fitted, (output, input): None (every coherent response the structure
+        produces) unless ``without_lam0_cm``, then those less every ``lam0 / C_M``."""
+        if not self.without_lam0_cm:
+            return None
+        return [(o, i) for o in self.outputs for i in self.inputs
+                if (self.interference or o[-1] == i[-1]) and not (o.startswith("lam0") and i.startswith("CM"))]
+
+    @property
+    def fit_options(self):
+        """The analytic Jacobian (exact for M / Lbar / tau, a refit several times faster than
+        differences) and, with ``without_lam0_cm``, the ``pairs`` fitted."""
+        out = {"jacobian": "analytic"}
+        if self.pairs is not None:
+            out["pairs"] = list(self.pairs)
+        return out
+
+    def spec(self):
+        out = {**super().spec(), "fit_options": {k: v for k, v in self.fit_options.items() if k != "pairs"}}
+        if self.without_lam0_cm:
+            out["without_lam0_cm"] = True
+        return out
+
+    def __repr__(self):
+        return f"{type(self).__name__}(frame={self.frame!r}, without_lam0_cm={self.without_lam0_cm})"
+
     def _patterns(self):
         """(M, Lbar, tau) as 6 x 6 lists of parameter names and zeros."""
         mats = {p: [[0] * 6 for _ in range(6)] for p in "mlt"}
@@ -201,6 +234,11 @@ class CoaxialForwardIsolated(_CoaxialForwardFirstOrder):
     ----------
     frame : {"rotor", "printed"}
         Frame of the parameters (the pattern is the same in both).
+    without_lam0_cm : bool
+        Leave every ``lam0 / C_M`` response out of the fit (as
+        :data:`~aircraft.identification.structures.forward.FORWARD_FIT_PAIRS` does for
+        one rotor: the wake's quasi-steady ``lam0 / C_M`` can have a sign no stable
+        Eq. 4.3 block reaches, §4.4.1.2). Default False (every coherent response).
 
     Examples
     --------
@@ -225,6 +263,11 @@ class CoaxialForward6State(_CoaxialForwardFirstOrder):
     ----------
     frame : {"rotor", "printed"}
         Frame of the parameters (the pattern is the same in both).
+    without_lam0_cm : bool
+        Leave every ``lam0 / C_M`` response out of the fit (as
+        :data:`~aircraft.identification.structures.forward.FORWARD_FIT_PAIRS` does for
+        one rotor: the wake's quasi-steady ``lam0 / C_M`` can have a sign no stable
+        Eq. 4.3 block reaches, §4.4.1.2). Default False (every coherent response).
 
     Examples
     --------

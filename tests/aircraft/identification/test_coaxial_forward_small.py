@@ -52,6 +52,21 @@ def test_patterns_hand_counted():
         six.build(ROTORS, OMEGA)
 
 
+def test_without_lam0_cm_pairs_hand_counted():
+    # isolated: per rotor 3 x 3 own responses less lam0/CM = 8, two rotors 16;
+    # 6-state: 6 x 6 less the four lam0/CM (both rotors' lam0 on both rotors' CM) = 32
+    assert CoaxialForwardIsolated().pairs is None and "pairs" not in CoaxialForwardIsolated().fit_options
+    iso = CoaxialForwardIsolated(without_lam0_cm=True).fit_options["pairs"]
+    six = CoaxialForward6State(without_lam0_cm=True).fit_options["pairs"]
+    assert (len(iso), len(six)) == (16, 32)
+    assert ("lam1c_U", "CT_U") in iso and ("lam1c_U", "CT_L") not in iso and ("lam1c_U", "CT_L") in six
+    assert not any(o.startswith("lam0") and i.startswith("CM") for o, i in six)
+    # the option is part of what identifies the structure (settings hashes, model files)
+    assert CoaxialForward6State(without_lam0_cm=True).spec() != CoaxialForward6State().spec()
+    with pytest.raises(TypeError, match="without_lam0_cm"):
+        CoaxialForward6State(without_lam0_cm="yes")
+
+
 @pytest.mark.parametrize("structure, truth", [(CoaxialForwardIsolated(), ROTORS),
                                               (CoaxialForward6State(), {**ROTORS, **INTERFERENCE})],
                          ids=["isolated", "6state"])
@@ -59,7 +74,7 @@ def test_pipeline_starts_recover_exact_data(structure, truth):
     # what identify_inflow does: fit every data-driven start, keep the lowest cost
     data = _exact(structure, truth)
     candidates = _start_candidates(structure, data, IdentificationSettings(), OMEGA)
-    fits = [fit(structure.build(init, OMEGA), data, frequency_ranges=(1.0, 25.0), n_omega=20)
+    fits = [fit(structure.build(init, OMEGA), data, frequency_ranges=(1.0, 25.0), n_omega=20, **structure.fit_options)
             for _, init in candidates]
     best = min(fits, key=lambda r: r.J_ave)
     # exact data: the optimum is the truth, J_ave ~1e-3 (measured 1e-4 and 9e-4: the cost's
