@@ -58,8 +58,12 @@ class _CoaxialForwardFirstOrder(InflowStructure):
         produces) unless ``without_lam0_cm``, then those less every ``lam0 / C_M``."""
         if not self.without_lam0_cm:
             return None
+        # the responses the pattern produces: lam0 and lam1c on C_T and C_M, lam1s on C_L
+        # (Eq. 4.3 couples the longitudinal harmonics only), own rotor unless interference
+        lateral = lambda name: name.startswith(("lam1s", "CL"))   # noqa: E731
         return [(o, i) for o in self.outputs for i in self.inputs
-                if (self.interference or o[-1] == i[-1]) and not (o.startswith("lam0") and i.startswith("CM"))]
+                if (self.interference or o[-1] == i[-1]) and lateral(o) == lateral(i)
+                and not (o.startswith("lam0") and i.startswith("CM"))]
 
     @property
     def fit_options(self):

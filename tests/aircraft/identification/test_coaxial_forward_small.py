@@ -53,13 +53,15 @@ def test_patterns_hand_counted():
 
 
 def test_without_lam0_cm_pairs_hand_counted():
-    # isolated: per rotor 3 x 3 own responses less lam0/CM = 8, two rotors 16;
-    # 6-state: 6 x 6 less the four lam0/CM (both rotors' lam0 on both rotors' CM) = 32
+    # the pattern produces lam0, lam1c on CT, CM and lam1s on CL: isolated, per rotor
+    # 2 x 2 + 1 = 5 less lam0/CM = 4, two rotors 8; 6-state: (4 x 4 + 2 x 2) = 20 less the
+    # four lam0/CM (both rotors' lam0 on both rotors' CM) = 16
     assert CoaxialForwardIsolated().pairs is None and "pairs" not in CoaxialForwardIsolated().fit_options
     iso = CoaxialForwardIsolated(without_lam0_cm=True).fit_options["pairs"]
     six = CoaxialForward6State(without_lam0_cm=True).fit_options["pairs"]
-    assert (len(iso), len(six)) == (16, 32)
+    assert (len(iso), len(six)) == (8, 16)
     assert ("lam1c_U", "CT_U") in iso and ("lam1c_U", "CT_L") not in iso and ("lam1c_U", "CT_L") in six
+    assert ("lam0_U", "CL_U") not in six and ("lam1s_L", "CL_U") in six
     assert not any(o.startswith("lam0") and i.startswith("CM") for o, i in six)
     # the option is part of what identifies the structure (settings hashes, model files)
     assert CoaxialForward6State(without_lam0_cm=True).spec() != CoaxialForward6State().spec()
