@@ -30,7 +30,7 @@ DEFAULT_CANDIDATES = ("coaxial_forward_isolated", "coaxial_forward_6state", "coa
 
 #: Columns of :func:`candidate_structures_table`.
 CANDIDATE_COLUMNS = ("structure", "states", "parameters_start", "free_parameters", "J_ave", "max_cramer_rao_pct",
-                     "max_insensitivity_pct", "trusted", "reasons", "wall_s")
+                     "max_insensitivity_pct", "trusted", "reasons", "wall_s", "note")
 
 
 def default_candidates():
@@ -79,7 +79,8 @@ def candidate_structures_table(models, wall_s=None):
         (the structure's pattern) and ``free_parameters`` (after the reduction),
         ``J_ave``, the largest normalised Cramér-Rao bound and insensitivity of the
         free parameters [%], ``trusted`` (:attr:`IdentifiedModel.trusted`) and
-        ``reasons`` (its failures joined by " | ", empty when trusted).
+        ``reasons`` (its failures joined by " | ", empty when trusted), ``wall_s``, and
+        ``note`` (why the reduced model has no doublet verification, else empty).
 
     Examples
     --------
@@ -96,7 +97,8 @@ def candidate_structures_table(models, wall_s=None):
                      "parameters_start": _n_start(model.structure), "free_parameters": len(free),
                      "J_ave": model.J_ave, "max_cramer_rao_pct": float(free.cramer_rao_pct.max()),
                      "max_insensitivity_pct": float(free.insensitivity_pct.max()), "trusted": not failures,
-                     "reasons": " | ".join(failures), "wall_s": wall_s.get(label, np.nan)})
+                     "reasons": " | ".join(failures), "wall_s": wall_s.get(label, np.nan),
+                     "note": str(getattr(model, "provenance", {}).get("verification_error", ""))})
     return pd.DataFrame(rows, columns=list(CANDIDATE_COLUMNS))
 
 
@@ -192,7 +194,8 @@ def identify_candidate_structures(structures=None, *, config=None, ct=None, lift
             models[label] = identify_coaxial_forward(
                 config, ct=ct, structure=structure, settings=settings, n_jobs=n_jobs, cache_dir=cache_dir,
                 progress=progress, max_reduction_steps=max_reduction_steps, lift_offset=lift_offset,
-                reduction_batch=reduction_batch, name=f"coaxial forward candidate {label}", **kwargs)
+                reduction_batch=reduction_batch, name=f"coaxial forward candidate {label}",
+                verification_failure="record", **kwargs)
         except (ValueError, RuntimeError, np.linalg.LinAlgError) as err:
             # one candidate's failed fit (e.g. no stable start) leaves the others standing
             errors[label] = f"{type(err).__name__}: {err}"[:300]

@@ -139,3 +139,5 @@ def test_default_candidates_and_bad_structures():
     # flap-rate inputs need tip-path-plane sweeps the 200 kt records do not have
     with pytest.raises(TypeError, match="flap-rate"):
         identify_coaxial_forward(structure=Coaxial12State(), ct=0.0124)
+    with pytest.raises(ValueError, match="verification_failure"):
+        identify_coaxial_forward(ct=0.0124, verification_failure="ignore")
