@@ -10,9 +10,10 @@ Every candidate is identified by :func:`identify_coaxial_forward` with the same
 trim request and settings, so that its sweeps are the same wake records (the
 records are keyed by content in the wake cache: computed once, read by the
 others). The structures go from small to large (:data:`DEFAULT_CANDIDATES`):
-two isolated Eq. 4.3 rotors, the coaxial 6-state with Eq. 5.3's interference,
-the near-wake half of Eq. 6.5; the table names the largest one the trust rule
-(:attr:`IdentifiedModel.trusted`) accepts.
+two isolated Eq. 4.3 rotors, the coaxial 6-state with Eq. 5.3's interference
+(each also without the ``lam0 / C_M`` responses, as §4.4.1.2 allows for one
+rotor), the near-wake half of Eq. 6.5; the table names the largest one the trust
+rule (:attr:`IdentifiedModel.trusted`) accepts.
 """
 from __future__ import annotations
 
@@ -26,7 +27,8 @@ __all__ = ["DEFAULT_CANDIDATES", "CANDIDATE_COLUMNS", "CandidateStructures", "de
            "candidate_structures_table", "identify_candidate_structures"]
 
 #: Keys of the default candidates, smallest first.
-DEFAULT_CANDIDATES = ("coaxial_forward_isolated", "coaxial_forward_6state", "coaxial_forward_12state_near_wake")
+DEFAULT_CANDIDATES = ("coaxial_forward_isolated", "coaxial_forward_isolated_without_lam0_cm", "coaxial_forward_6state",
+                      "coaxial_forward_6state_without_lam0_cm", "coaxial_forward_12state_near_wake")
 
 #: Columns of :func:`candidate_structures_table`.
 CANDIDATE_COLUMNS = ("structure", "states", "parameters_start", "free_parameters", "J_ave", "max_cramer_rao_pct",
@@ -39,8 +41,9 @@ def default_candidates():
     Returns
     -------
     dict
-        Key -> structure instance: :class:`CoaxialForwardIsolated` (24 parameters),
-        :class:`CoaxialForward6State` (42), ``CoaxialForward12State(near_wake_only=True)`` (72).
+        Key -> structure instance: :class:`CoaxialForwardIsolated` (24 parameters), the same
+        fitted without the ``lam0 / C_M`` responses, :class:`CoaxialForward6State` (42) with
+        and without them, ``CoaxialForward12State(near_wake_only=True)`` (72).
 
     Examples
     --------
@@ -49,8 +52,9 @@ def default_candidates():
     """
     from .structures.coaxial_forward import CoaxialForward12State
     from .structures.coaxial_forward_small import CoaxialForward6State, CoaxialForwardIsolated
-    return {DEFAULT_CANDIDATES[0]: CoaxialForwardIsolated(), DEFAULT_CANDIDATES[1]: CoaxialForward6State(),
-            DEFAULT_CANDIDATES[2]: CoaxialForward12State(near_wake_only=True)}
+    structures = (CoaxialForwardIsolated(), CoaxialForwardIsolated(without_lam0_cm=True), CoaxialForward6State(),
+                  CoaxialForward6State(without_lam0_cm=True), CoaxialForward12State(near_wake_only=True))
+    return dict(zip(DEFAULT_CANDIDATES, structures))
 
 
 def _n_states(structure):
