@@ -47,7 +47,8 @@ from aircraft.inflow.published import COAXIAL_200KT_12STATE, in_rotor_frames
 from aircraft.wake import WakeSettings
 
 #: Whether the study identifies the candidate structures unless told (``--[no-]candidate-structures``):
-#: off, the five candidates' fits and reductions took 4.7 min on 2 busy cores (records cached).
+#: off, the five candidates' fits and reductions take about 4.5 min on 2 busy cores (records
+#: cached): 82 s for the four first-order ones, 90-190 s for the near-wake half of Eq. 6.5.
 CANDIDATES_DEFAULT = False
 
 #: The coarse wake of the 200 kt runs (about 20x cheaper than the default).
@@ -209,9 +210,12 @@ def main(argv=None):
     print(model.verification_table.to_string(index=False, float_format=fmt))
     if args.candidate_structures:
         print("\n== Candidate structures on the same records (reduced, trust rule) ==")
-        print(structures.drop(columns="reasons").to_string(index=False, float_format=fmt))
-        for row in structures[~structures.trusted].itertuples():
-            print(f"  {row.structure} not trusted: {str(row.reasons)[:300]}")
+        print(structures.drop(columns=["reasons", "note"]).to_string(index=False, float_format=fmt))
+        for row in structures.itertuples():
+            if not row.trusted:
+                print(f"  {row.structure} not trusted: {str(row.reasons)[:300]}")
+            if isinstance(row.note, str) and row.note:
+                print(f"  {row.structure}: {row.note[:300]}")
         best = structures[structures.largest_trusted]
         print("largest structure the trust rule accepts at 200 kt: "
               + (f"{best.structure.iloc[0]} ({best.free_parameters.iloc[0]} free parameters)" if len(best)
