@@ -32,7 +32,7 @@ DEFAULT_CANDIDATES = ("coaxial_forward_isolated", "coaxial_forward_isolated_with
 
 #: Columns of :func:`candidate_structures_table`.
 CANDIDATE_COLUMNS = ("structure", "states", "parameters_start", "free_parameters", "J_ave", "max_cramer_rao_pct",
-                     "max_insensitivity_pct", "trusted", "reasons", "wall_s", "note")
+                     "max_insensitivity_pct", "max_doublet_tic", "trusted", "reasons", "wall_s", "note")
 
 
 def default_candidates():
@@ -82,7 +82,9 @@ def candidate_structures_table(models, wall_s=None):
         Columns :data:`CANDIDATE_COLUMNS`: ``states`` of the model, ``parameters_start``
         (the structure's pattern) and ``free_parameters`` (after the reduction),
         ``J_ave``, the largest normalised Cramér-Rao bound and insensitivity of the
-        free parameters [%], ``trusted`` (:attr:`IdentifiedModel.trusted`) and
+        free parameters [%], ``max_doublet_tic`` (the largest Theil inequality coefficient
+        of the doublet verification, 0 perfect, 1 no better than zero; NaN without one),
+        ``trusted`` (:attr:`IdentifiedModel.trusted`) and
         ``reasons`` (its failures joined by " | ", empty when trusted), ``wall_s``, and
         ``note`` (why the reduced model has no doublet verification, else empty).
 
@@ -97,12 +99,18 @@ def candidate_structures_table(models, wall_s=None):
         p = model.parameters
         free = p[p.status == "free"]
         failures = model.trust.failures
+        note = str(getattr(model, "provenance", {}).get("verification_error", ""))
+        # the doublet check is not part of the trust rule, but it shows a degenerate model
+        # (a singular apparent mass fits the frequency responses and diverges in time)
+        tic = np.nan if note or not hasattr(model, "verification_table") else \
+            float(model.verification_table.TIC.max())
         rows.append({"structure": label, "states": _n_states(model.structure),
                      "parameters_start": _n_start(model.structure), "free_parameters": len(free),
                      "J_ave": model.J_ave, "max_cramer_rao_pct": float(free.cramer_rao_pct.max()),
-                     "max_insensitivity_pct": float(free.insensitivity_pct.max()), "trusted": not failures,
+                     "max_insensitivity_pct": float(free.insensitivity_pct.max()), "max_doublet_tic": tic,
+                     "trusted": not failures,
                      "reasons": " | ".join(failures), "wall_s": wall_s.get(label, np.nan),
-                     "note": str(getattr(model, "provenance", {}).get("verification_error", ""))})
+                     "note": note})
     return pd.DataFrame(rows, columns=list(CANDIDATE_COLUMNS))
 
 

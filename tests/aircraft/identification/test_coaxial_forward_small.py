@@ -99,7 +99,8 @@ def _fake_model(structure, free, J, failures):
     params.loc[len(params)] = {"parameter": "fixed", "value": 0.0, "status": "fixed", "cramer_rao_pct": 1e9,
                                "insensitivity_pct": 1e9}
     return SimpleNamespace(structure=structure, parameters=params, J_ave=J,
-                           trust=SimpleNamespace(failures=failures))
+                           trust=SimpleNamespace(failures=failures), provenance={},
+                           verification_table=pd.DataFrame({"output": ["a", "b"], "TIC": [0.2, 0.7]}))
 
 
 def test_candidate_table_columns_and_the_largest_trusted():
@@ -108,6 +109,7 @@ def test_candidate_table_columns_and_the_largest_trusted():
               "six": _fake_model(CoaxialForward6State(), [(5.0, 1.0), (15.0, 2.0), (8.0, 9.0)], 30.0, []),
               "near": _fake_model(CoaxialForward12State(near_wake_only=True), [(50.0, 1.0)] * 5, 20.0,
                                   ["J_ave 120 > 100", "parameters outside the bounds"])}
+    models["six"].provenance["verification_error"] = "the reduced model's doublet simulation failed"
     table = candidate_structures_table(models, {"iso": 1.5})
     assert table.columns.tolist() == list(CANDIDATE_COLUMNS)
     t = table.set_index("structure")
@@ -118,6 +120,9 @@ def test_candidate_table_columns_and_the_largest_trusted():
     assert t.trusted.tolist() == [True, True, False]
     assert t.loc["near", "reasons"] == "J_ave 120 > 100 | parameters outside the bounds"
     assert t.loc["iso", "wall_s"] == 1.5 and np.isnan(t.loc["six", "wall_s"])
+    # the worst doublet TIC; none where the reduced model's doublet simulation failed
+    assert t.loc["iso", "max_doublet_tic"] == 0.7 and np.isnan(t.loc["six", "max_doublet_tic"])
+    assert t.loc["six", "note"].startswith("the reduced model") and t.loc["iso", "note"] == ""
     result = CandidateStructures(models, table)
     assert result.largest_trusted == "six"
     assert CandidateStructures({}, candidate_structures_table({})).largest_trusted is None
