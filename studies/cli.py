@@ -130,7 +130,9 @@ STUDIES = {s.command: s for s in (
           default_out="results/coaxial_forward_flight",
           cached_note="wake runs cached under .cache/wake (the fit and reduction remain)",
           variants={"--near-wake-only": (10.0, ("{out}",), "the 72-parameter near-wake half; wake runs cached "
-                                                            "under .cache/wake")}),
+                                                            "under .cache/wake"),
+                    "--candidate-structures": (35.0, ("{out}",), "also the smaller candidate structures on the "
+                                                                 "same records, trust verdicts in structures.csv")}),
     Study("rotor-truth-check", "studies.rotor_truth_check",
           "rotor-level truth check: free wake with free flapping vs blade-element rotor with "
           "identified / Dynamic-Climb / Pitt-Peters inflow (§7.2.2)", 10.0,

@@ -19,6 +19,8 @@ Thin study over :mod:`aircraft.identification.coaxial_forward_flight`:
 Writes ``results/coaxial_forward_flight/``: ``cost_table.csv``,
 ``parameters.csv``, ``verification.csv``, ``reduction_log.csv``, ``trim.csv``, ``wall_times.csv``,
 ``responses.csv``, ``differences.csv``, ``verdicts.csv``, ``poles.csv``,
+``structures.csv`` (with ``--candidate-structures``: each candidate structure's size,
+cost, bounds and trust verdict beside the study's own),
 ``bode_fit.png`` (not with ``--small``), ``verification.png``, ``bare_airframe_200kt.png``.
 
 Run: ``python -m studies.cli coaxial-forward-flight`` (coarse wake; ``--small``:
@@ -29,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import tempfile
 import time
 from pathlib import Path
 
@@ -38,10 +41,15 @@ from aircraft.configs import coaxial_compound
 from aircraft.identification.structures import CoaxialForward12State
 from aircraft.identification import IdentificationSettings
 from aircraft.identification.coaxial_forward_flight import (aircraft_lift_offset, aircraft_thrust_at, identify_coaxial_forward)
-from studies.analysis.coaxial_200kt import cost_table_beside_dissertation, isolated_rotor_check
+from studies.analysis.coaxial_200kt import cost_table_beside_dissertation, isolated_rotor_check, structures_table
 from aircraft.inflow import IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_200KT_12STATE, in_rotor_frames
 from aircraft.wake import WakeSettings
+
+#: Whether the study identifies the candidate structures unless told (``--[no-]candidate-structures``):
+#: off, the five candidates' fits and reductions take about 4.5 min on 2 busy cores (records
+#: cached): 82 s for the four first-order ones, 90-190 s for the near-wake half of Eq. 6.5.
+CANDIDATES_DEFAULT = False
 
 #: The coarse wake of the 200 kt runs (about 20x cheaper than the default).
 COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
@@ -80,6 +88,29 @@ def settings_for(small=False, sweep_s=40.0, reduce=True, near_wake_only=False):
             CoaxialForward12State(near_wake_only=near_wake_only))
 
 
+def candidate_structures(model, t_id, config, ct, los, settings, args):
+    """The smaller candidates on the study's records beside its own structure (``structures.csv``).
+
+    The study's structure itself is left out of the candidates (the ``--small`` and
+    ``--near-wake-only`` runs identify the near-wake half already).
+    """
+    from aircraft.identification.coaxial_forward_candidates import (default_candidates,
+                                                                    identify_candidate_structures)
+    main = model.structure
+    label = main.key + ("_near_wake" if getattr(main, "near_wake_only", False) else "")
+    cands = {k: s for k, s in default_candidates().items() if s.spec() != main.spec()}
+    with tempfile.TemporaryDirectory() as tmp:
+        # without the cache the records are still computed once: a private cache serves
+        # the other candidates (and is thrown away)
+        result = identify_candidate_structures(cands, config=config, ct=ct, lift_offset=los, settings=settings,
+                                               n_jobs=args.jobs, progress=False,
+                                               cache_dir=tmp if args.no_cache else "default",
+                                               max_reduction_steps=args.max_reduction_steps)
+    table = structures_table(label, model, round(t_id, 1), result)
+    table.to_csv(Path(args.out) / "structures.csv", index=False)
+    return table
+
+
 def parameter_table(model):
     """Our parameters (value, status, CR %, insensitivity %, trust verdict and its reason)
     beside Eqs. 6.12-6.13 per d/dpsi."""
@@ -116,6 +147,10 @@ def main(argv=None):
     parser.add_argument("--jobs", type=int, default=2, help="wake worker processes")
     parser.add_argument("--no-cache", action="store_true",
                         help="do not read or write the wake cache (the printed wall times are then the data set's)")
+    parser.add_argument("--candidate-structures", action=argparse.BooleanOptionalAction, default=CANDIDATES_DEFAULT,
+                        help="also identify the smaller candidate structures (isolated rotors, coaxial 6-state, "
+                             "near-wake half of Eq. 6.5) on the same records, reduce each, and write their trust "
+                             "verdicts to structures.csv")
     parser.add_argument("--out", default="results/coaxial_forward_flight")
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
@@ -133,6 +168,8 @@ def main(argv=None):
                                      max_reduction_steps=args.max_reduction_steps, lift_offset=los,
                                      reduction_batch=args.reduction_batch)
     t_id = time.perf_counter() - t0
+    if args.candidate_structures:
+        structures = candidate_structures(model, t_id, config, ct, los, settings, args)
     cost = cost_table_beside_dissertation(model)
     params = parameter_table(model)
     cost.to_csv(out / "cost_table.csv", index=False)
@@ -171,6 +208,18 @@ def main(argv=None):
     if untried:
         print(f"the reduction stopped at its step bound with {len(untried)} candidates untried: {untried[:10]}")
     print(model.verification_table.to_string(index=False, float_format=fmt))
+    if args.candidate_structures:
+        print("\n== Candidate structures on the same records (reduced, trust rule) ==")
+        print(structures.drop(columns=["reasons", "note"]).to_string(index=False, float_format=fmt))
+        for row in structures.itertuples():
+            if not row.trusted:
+                print(f"  {row.structure} not trusted: {str(row.reasons)[:300]}")
+            if isinstance(row.note, str) and row.note:
+                print(f"  {row.structure}: {row.note[:300]}")
+        best = structures[structures.largest_trusted]
+        print("largest structure the trust rule accepts at 200 kt: "
+              + (f"{best.structure.iloc[0]} ({best.free_parameters.iloc[0]} free parameters)" if len(best)
+                 else "none"))
     red = model.provenance.get("reduction_wall_s")
     print(f"identification wall time {t_id:.0f} s" + (f" (reduction {red:.0f} s)" if red is not None else ""))
 

@@ -163,7 +163,8 @@ def forward_trim_request(ct, *, lift_offset=0.0, tol=1e-4, max_iter=30):
 
 def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA, ct=None,
                              structure=None, settings=None, n_jobs=2, cache_dir="default", progress=True,
-                             name=None, max_reduction_steps=1000, lift_offset=0.0, reduction_batch=1):
+                             name=None, max_reduction_steps=1000, lift_offset=0.0, reduction_batch=1,
+                             verification_failure="raise"):
     """Identify the 200 kt coaxial inflow model (Eq. 6.5 structure) from our free wake.
 
     Parameters
@@ -177,9 +178,11 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     ct : float, optional
         System thrust coefficient of the wake trim [-]; default
         :func:`aircraft_thrust_at` (what the aircraft needs there).
-    structure : CoaxialForward12State, optional
-        Default the full Eq. 6.5 pattern (180 parameters at the start), with the
-        configuration's rotor names.
+    structure : InflowStructure, optional
+        Default :class:`CoaxialForward12State`, the full Eq. 6.5 pattern (180
+        parameters at the start), with the configuration's rotor names; any coaxial
+        structure without flap-rate inputs with those rotor names (e.g.
+        :class:`CoaxialForward6State`) is identified from the same records.
     settings : IdentificationSettings, optional
         Default: the pipeline's defaults with a lower-rotor lateral doublet
         (``theta1s_L`` with the default rotor names, as Figs. 6.29-6.33) of
@@ -204,6 +207,11 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
         Candidates the reduction removes together per refit (:func:`flightid.reduce`
         ``batch``): the 180-parameter start removes ~100 parameters, one refit
         each at 1 (the default, Fig. 6.1).
+    verification_failure : {"raise", "record"}
+        When the reduced model's doublet simulation is not finite (an ill-conditioned
+        model): raise (default), or keep the reduced fit with the first fit's
+        verification and say so in ``provenance["verification_error"]`` (the trust
+        verdict needs no simulation; used to compare candidate structures).
     lift_offset : float or (float, float)
         Lift offset of the wake trim [-], both rotors or (upper, lower): e.g.
         :func:`aircraft_lift_offset`, the aircraft's own (see
@@ -221,11 +229,18 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     from .pipeline import (IdentificationSettings, _verify, identification_hash, identify_inflow)
     from aircraft.inflow.base import config_rotor_names
     config = _config(config)
+    from .structures.base import InflowStructure
     names = config_rotor_names(config)          # (upper, lower): the signals' rotor names
     structure = structure if structure is not None else CoaxialForward12State(rotors=names)
-    if not isinstance(structure, CoaxialForward12State):
-        raise TypeError(f"structure must be a CoaxialForward12State, got {type(structure).__name__}")
+    # any coaxial load-driven structure: the sweeps (its excitations) are then the
+    # 12-state's six swashplate controls, so that the wake records are the same
+    if not isinstance(structure, InflowStructure) or tuple(structure.rotors) != tuple(names) \
+            or structure.uses_flap_rates:
+        raise TypeError(f"structure must be a coaxial InflowStructure without flap-rate inputs with the "
+                        f"rotors {tuple(names)} (e.g. CoaxialForward12State), got {structure!r}")
     settings = settings or IdentificationSettings(doublet_control=f"theta1s_{names[1]}", doublet_amplitude=0.035)
+    if verification_failure not in ("raise", "record"):
+        raise ValueError(f"verification_failure must be 'raise' or 'record', got {verification_failure!r}")
     if isinstance(max_reduction_steps, bool) or not isinstance(max_reduction_steps, int) \
             or max_reduction_steps < 0:
         raise ValueError(f"max_reduction_steps must be an integer >= 0, got {max_reduction_steps!r}")
@@ -242,6 +257,7 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     if not settings.reduce or max_reduction_steps == 0:
         return model
     from flightid import reduce
+    from flightid.errors import DataError
     t0 = time.perf_counter()
     s = settings
     reduction = reduce(model.fit.structure, model.responses, insensitivity_max=s.insensitivity_max,
@@ -252,13 +268,23 @@ def identify_coaxial_forward(config=None, *, speed=SPEED_200KT, rotor_aoa=ROTOR_
     ss = reduction.result.structure.to_statespace(pade_order=s.pade_order)
     ref = pd.Series(model.trim.outputs)
     doublet, zero = _verification_runs(config, condition, request, s, structure, cache_dir)
-    check = _verify(ss, doublet, ref, structure.inputs, structure.outputs)
-    floor = _verify(ss, zero, ref, structure.inputs, structure.outputs)
+    verification_error = ""
+    try:
+        check = _verify(ss, doublet, ref, structure.inputs, structure.outputs)
+        floor = _verify(ss, zero, ref, structure.inputs, structure.outputs)
+    except DataError as err:
+        if verification_failure == "raise":
+            raise
+        # "record": the reduced fit (and its trust verdict, which needs no simulation) is kept
+        check, floor, verification_error = model.verification, model.noise_floor, str(err)[:300]
     digest, payload = identification_hash(config, condition, structure, settings, trim=request)
     provenance = {**model.provenance, "reduction": "aircraft.identification.coaxial_forward_flight",
                   "max_reduction_steps": max_reduction_steps, "reduction_batch": reduction_batch,
                   "reduction_untried": _untried(reduction, s, structure.protected),
                   "reduction_wall_s": round(time.perf_counter() - t0, 1)}
+    if verification_error:
+        provenance["verification_error"] = ("the reduced model's doublet simulation failed (" + verification_error
+                                            + "); the verification shown is the first fit's")
     return dataclasses.replace(model, fit=reduction.result, reduction=reduction, verification=check,
                                noise_floor=floor, settings=settings, settings_hash=digest,
                                hash_payload=payload, provenance=provenance)

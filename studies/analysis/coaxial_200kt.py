@@ -5,6 +5,7 @@
     cost_table_beside_dissertation(m)   our J per response beside Table 6.3
     isolated_rotor_check(inflows, ...)  the aircraft at 200 kt with each inflow model against
         -> IsolatedRotorCheck             Isolated Rotors (Figs. 7.7-7.10): .differences, .holds
+    structures_table(label, m, ...)     the study's structure beside the candidates, trust verdicts
 """
 from __future__ import annotations
 
@@ -15,7 +16,8 @@ import pandas as pd
 
 from aircraft.identification.coaxial_forward_flight import ROTOR_AOA, SPEED_200KT, _config, _speed
 
-__all__ = ["FIGS_7_7_TO_7_10", "cost_table_beside_dissertation", "IsolatedRotorCheck", "isolated_rotor_check"]
+__all__ = ["FIGS_7_7_TO_7_10", "cost_table_beside_dissertation", "IsolatedRotorCheck", "isolated_rotor_check",
+           "structures_table"]
 
 #: The bare-airframe responses of Figs. 7.7-7.10 (output, pilot input).
 FIGS_7_7_TO_7_10 = (("q", "delta_lon"), ("p", "delta_lat"), ("w", "delta_col"), ("r", "delta_ped"))
@@ -120,6 +122,43 @@ class IsolatedRotorCheck:
         for ax in fig.axes:
             ax.axvspan(*self.band, color="0.9", zorder=0)
         return fig
+
+
+def structures_table(label, model, wall_s, candidates):
+    """The study's identified structure beside the smaller candidates, one row each.
+
+    Parameters
+    ----------
+    label : str
+        Name of the study's structure (e.g. ``"coaxial_forward_12state"``).
+    model : IdentifiedModel
+        The study's identified model.
+    wall_s : float
+        Its identification wall time [s].
+    candidates : CandidateStructures
+        From :func:`aircraft.identification.coaxial_forward_candidates.identify_candidate_structures`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        :data:`~aircraft.identification.coaxial_forward_candidates.CANDIDATE_COLUMNS` plus
+        ``largest_trusted`` (True on the trusted row with the most free parameters),
+        candidates first, the study's structure last; a candidate whose identification
+        failed has its message in ``reasons`` and no numbers.
+    """
+    from aircraft.identification.coaxial_forward_candidates import candidate_structures_table
+    main = candidate_structures_table({label: model}, {label: wall_s})
+    failed = pd.DataFrame([{"structure": k, "trusted": False, "reasons": f"identification failed: {v}"}
+                           for k, v in candidates.errors.items()], columns=main.columns)
+    parts = [t for t in (candidates.table, failed, main) if not t.empty]
+    table = pd.concat(parts, ignore_index=True)
+    table["trusted"] = table.trusted.astype(bool)
+    table["largest_trusted"] = False
+    trusted = table[table.trusted]
+    if not trusted.empty:
+        best = trusted.sort_values(["free_parameters", "states"], kind="stable").index[-1]
+        table.loc[best, "largest_trusted"] = True
+    return table
 
 
 def isolated_rotor_check(inflows, *, config=None, speed=SPEED_200KT, rotor_aoa=ROTOR_AOA,

@@ -54,3 +54,31 @@ def test_isolated_rotor_check_reports_when_no_model_trims():
         in_rotor_frames(COAXIAL_200KT_12STATE))}, omega=np.logspace(0.0, 1.0, 10))
     v = chk.verdicts()
     assert list(v.model) == ["Eqs. 6.12-6.13"] and v.trim.iloc[0].startswith("failed")
+
+
+def test_structures_table_marks_the_largest_trusted_and_keeps_failures():
+    # stand-ins with what the table reads of an IdentifiedModel; hand-counted expectations
+    from types import SimpleNamespace
+    import pandas as pd
+    from aircraft.identification.coaxial_forward_candidates import (CANDIDATE_COLUMNS, CandidateStructures,
+                                                                    candidate_structures_table)
+    from aircraft.identification.structures import CoaxialForward12State
+    from aircraft.identification.structures.coaxial_forward_small import CoaxialForward6State, CoaxialForwardIsolated
+    from studies.analysis.coaxial_200kt import structures_table
+
+    def fake(structure, n_free, failures):
+        params = pd.DataFrame({"parameter": [f"p{k}" for k in range(n_free)], "status": "free",
+                               "cramer_rao_pct": 5.0, "insensitivity_pct": 1.0})
+        return SimpleNamespace(structure=structure, parameters=params, J_ave=50.0,
+                               trust=SimpleNamespace(failures=failures))
+
+    models = {"iso": fake(CoaxialForwardIsolated(), 10, []), "six": fake(CoaxialForward6State(), 20, [])}
+    cands = CandidateStructures(models, candidate_structures_table(models), {"near": "ValueError: no stable start"})
+    table = structures_table("main", fake(CoaxialForward12State(), 100, ["J_ave 120 > 100"]), 600.0, cands)
+    assert table.columns.tolist() == list(CANDIDATE_COLUMNS) + ["largest_trusted"]
+    assert table.structure.tolist() == ["iso", "six", "near", "main"]
+    assert table.trusted.tolist() == [True, True, False, False]
+    # the trusted row with the most free parameters (20 > 10); the larger main is not trusted
+    assert table.largest_trusted.tolist() == [False, True, False, False]
+    assert table.set_index("structure").loc["near", "reasons"].startswith("identification failed")
+    assert table.set_index("structure").loc["main", "wall_s"] == 600.0

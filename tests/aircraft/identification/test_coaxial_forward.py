@@ -213,8 +213,8 @@ def test_study_small_end_to_end(tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(root),
                ROTORWAKE_CACHE_DIR=str(tmp_path / "cache"))
     done = subprocess.run([sys.executable, "-m", "studies.coaxial_forward_flight", "--small", "--jobs", "1",
-                           "--out", str(tmp_path / "out")], cwd=root, env=env, capture_output=True,
-                          text=True, timeout=1500)
+                           "--candidate-structures", "--out", str(tmp_path / "out")], cwd=root, env=env,
+                          capture_output=True, text=True, timeout=1500)
     assert done.returncode == 0, done.stderr[-3000:]
     out = tmp_path / "out"
     for name in ("cost_table.csv", "parameters.csv", "verification.csv", "trim.csv", "responses.csv",
@@ -225,6 +225,14 @@ def test_study_small_end_to_end(tmp_path):
     verdicts = pd.read_csv(out / "verdicts.csv")
     assert "Eqs. 6.12-6.13 (dissertation)" in set(verdicts.model)
     assert "J_ave" in done.stdout and "Isolated Rotors" in done.stdout
+    # the candidates on the same records, the study's own structure last
+    from aircraft.identification.coaxial_forward_candidates import CANDIDATE_COLUMNS
+    structures = pd.read_csv(out / "structures.csv")
+    assert structures.columns.tolist() == list(CANDIDATE_COLUMNS) + ["largest_trusted"]
+    assert structures.structure.tolist() == ["coaxial_forward_isolated", "coaxial_forward_isolated_without_lam0_cm",
+                                             "coaxial_forward_6state", "coaxial_forward_6state_without_lam0_cm",
+                                             "coaxial_forward_12state_near_wake"]
+    assert structures.largest_trusted.sum() <= 1 and "largest structure the trust rule accepts" in done.stdout
 
 
 
