@@ -51,6 +51,7 @@ from .hq.base import SPEEDS
 from .hq.selector import specs_for
 from .multi_axis import (AXIS_CHANNELS, AxisLoop, MultiAxisEMF, RateCommandModel, SignalNameError,
                          _default_command)
+from .multi_axis_guard import guard_specs
 from .plants import second_order_actuator
 from .specs import evaluate_specs
 
@@ -449,7 +450,7 @@ class MultiAxisResult:
 def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains=None, command_models=None,
                       actuator=None, sensor_delay=0.01, mte="all other", crossover_start=None, drb_start=0.9,
                       settings=None, later_settings=None, max_sweeps=3, gain_tolerance=0.01, progress=True,
-                      limits="hover", speed="hover", start_closed=False):
+                      limits="hover", speed="hover", start_closed=False, guard_other_axes=False):
     """Design the EMF loops of several axes of one MIMO aircraft against every axis's specs.
 
     Parameters
@@ -483,6 +484,13 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         axis a design plant whose closed loop can be stable; ``start_gains`` must then
         stabilise the aircraft together. An axis whose DMO then finds no gains meeting
         every spec keeps its current gains (not the DMO's best-scoring infeasible ones).
+    guard_other_axes : bool
+        False (default): an axis is tuned against its own specs. True: also against
+        the stability margins of the other closed loops on the whole aircraft
+        (:func:`controllers.multi_axis_guard.guard_specs`), so that raising one
+        axis's crossover cannot take another loop's margin below its Level 1
+        boundary (or below what it has, if that is lower): for an aircraft whose
+        loops couple strongly, e.g. pitch and heave at speed.
     crossover_start : dict, optional
         Axis -> first crossover boundary [rad/s] (default :data:`DEFAULT_CROSSOVER_START`).
     drb_start : float
@@ -574,7 +582,10 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
             plants[a] = eff
             design = AxisEMFDesign(eff, gains[a], axis=a, command_model=cms[a], actuator=actuator,
                                    sensor_delay=sensor_delay)
-            factory = (lambda wc, wd, a=a: axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed))
+            guards = (guard_specs(plant, others, design, {b: axis_specs(b, mte=mte, speed=speed) for b in others})
+                      if guard_other_axes and others else [])
+            factory = (lambda wc, wd, a=a, guards=guards: axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed)
+                       + guards)
             ts = time.perf_counter()
             prev = results.get(a)
             # later sweeps continue locally just below the boundaries the axis reached; the full

@@ -145,7 +145,8 @@ def main(argv=None):
     skipped = skipped_specs(regime)
     skipped.to_csv(out / "skipped_specs.csv", index=False)
     result = design_multi_axis(plant, axes=AXES, start_gains=START_GAINS, start_closed=True, settings=SETTINGS,
-                               max_sweeps=args.max_sweeps, limits="hover", speed=regime, progress=True)
+                               max_sweeps=args.max_sweeps, limits="hover", speed=regime, progress=True,
+                               guard_other_axes=True)
     print(f"{args.speed:g} m/s ({regime}), {', '.join(HELD)} held; open-loop unstable poles: "
           f"{', '.join(f'{p:.3g}' for p in unstable)}")
     print("skipped (not found printed):", ", ".join(sorted(set(skipped.spec))) if len(skipped) else "none")

@@ -1,0 +1,124 @@
+"""Guard specs: the stability margins of the other closed loops, graded while one axis is tuned.
+
+A sequential multi-axis design tunes one axis with the others closed. Its DMO
+raises that axis's crossover until one of *its own* specs fails; a loop that
+couples strongly into another axis can meanwhile take the other loop's margins
+away (at speed, a tight vertical-rate loop on the collective moves the pitch
+loop's unstable pole from about 0.5 to 1.6 rad/s, beyond what any pitch gains
+can hold with Level 1 margins). A guard spec reads another axis's stability
+margin -- Nichols margin, gain margin (rise or fall) and phase margin, loop
+broken at that axis's mixer input -- on the whole aircraft with the candidate
+gains of the axis being tuned, so the DMO stops raising where the other axis
+would lose its margin. CONDUIT grades every loop's specs on every gain at once;
+this is the same constraint in the sequential loop closure.
+
+Each guard's boundary is the other axis's own Level 1 boundary, or the value it
+has when the guard is built if that is already lower (a guard never asks for a
+margin the other axis does not have: it only forbids taking margin away).
+"""
+from __future__ import annotations
+
+from collections import OrderedDict
+
+import numpy as np
+
+from . import metrics as m
+from .multi_axis import AxisLoop, MultiAxisEMF
+from .specs import Spec
+
+__all__ = ["GUARDED_SPECS", "GUARD_OMEGA", "guard_specs"]
+
+#: the other axes' specs a guard grades: the hard stability margins, loop broken at the mixer input
+GUARDED_SPECS = ("NicMgG1", "StbMgG1.GM", "StbMgG1.PM")
+# guard values kept per axis design (the DMO grades one candidate's specs several times)
+_CACHE_SIZE = 64
+#: grid of the guards' margins [rad/s]: an eighth of the metrics' default points (the DMO grades
+#: hundreds of candidates, each with every other axis); on the forward-flight aircraft's pitch loop
+#: the margins it gives differ from the default grid's by < 1e-5 dB and < 2e-3 deg
+GUARD_OMEGA = np.geomspace(0.02, 100.0, 500)
+
+
+def _margins(view):
+    """(Nichols margin, |gain margin| [dB], phase margin [deg]) of one axis's broken loop."""
+    loop = view.broken_loop()
+    gm, pm, _, _ = m.gain_phase_margins(loop, GUARD_OMEGA)
+    return m.nichols_margin(loop, GUARD_OMEGA), abs(gm), pm
+
+
+def guard_specs(plant, loops, current, spec_lists, channels=None):
+    """Specs that keep the other closed loops' stability margins while ``axis`` is tuned.
+
+    Parameters
+    ----------
+    plant : control.StateSpace
+        The full linear aircraft (named signals).
+    loops : dict
+        Axis -> :class:`~controllers.multi_axis.AxisLoop` of the *other* closed loops.
+    current : controllers.multi_axis_design.AxisEMFDesign
+        The tuned axis's design at its current gains (on its effective plant with
+        ``loops`` closed): each candidate design of the DMO is put into the loop in
+        its place to grade the guards, and the margins it gives now set the floor
+        of each guard's boundary.
+    spec_lists : dict
+        Axis -> its spec list: the Level 1/2 boundaries of :data:`GUARDED_SPECS`
+        are read from it (an axis or spec missing from it is not guarded).
+    channels : dict, optional
+        Axis channels (default :data:`~controllers.multi_axis.AXIS_CHANNELS`).
+
+    Returns
+    -------
+    list of Spec
+        Hard specs named ``"<spec>@<other axis>"``, each graded on the whole
+        aircraft; boundaries ``min(level, value now)`` (see the module notes).
+
+    Raises
+    ------
+    ValueError
+        If the tuned axis is among ``loops``.
+
+    Examples
+    --------
+    >>> import control
+    >>> from controllers import PIDGains
+    >>> from controllers.multi_axis_design import AxisEMFDesign, _effective_plant, axis_specs
+    >>> plant = control.ss([[-1.0, 0, 0, 0], [1, 0, 0, 0], [0, 0, -2.0, 0], [0, 0, 1, 0]],
+    ...                    [[4.0, 0.5], [0, 0], [0.5, -4.0], [0, 0]], np.eye(4), 0,
+    ...                    inputs=["delta_lat", "delta_lon"], outputs=["p", "phi", "q", "theta"])
+    >>> pitch = AxisEMFDesign(_effective_plant(plant, {}, "pitch", None), PIDGains(1.0, 0.1, 0.3), axis="pitch")
+    >>> loops = {"pitch": AxisLoop.from_design(pitch)}
+    >>> roll = AxisEMFDesign(_effective_plant(plant, loops, "roll", None), PIDGains(1.0, 0.1, 0.3), axis="roll")
+    >>> guards = guard_specs(plant, loops, roll, {"pitch": axis_specs("pitch")})
+    >>> [g.name for g in guards]
+    ['NicMgG1@pitch', 'StbMgG1.GM@pitch', 'StbMgG1.PM@pitch']
+    """
+    axis = current.axis
+    if axis in loops:
+        raise ValueError(f"guard_specs: the tuned axis {axis!r} must not be among the other loops")
+    kwargs = {} if channels is None else {"channels": channels}
+    cache = OrderedDict()
+
+    def values(design, other):
+        key = (design.gains.as_array().tobytes(), id(design.plant), other)
+        if key not in cache:
+            emf = MultiAxisEMF(plant, {**loops, axis: AxisLoop.from_design(design)}, **kwargs)
+            cache[key] = _margins(emf.axis_view(other))
+            if len(cache) > _CACHE_SIZE:
+                cache.popitem(last=False)
+        return cache[key]
+
+    out = []
+    for other in loops:
+        by_name = {s.name: s for s in spec_lists.get(other, ())}
+        now = values(current, other)
+        for k, name in enumerate(GUARDED_SPECS):
+            s = by_name.get(name)
+            if s is None:
+                continue
+            l1, l2 = s.level1, s.level2
+            if np.isfinite(now[k]):
+                l1, l2 = min(l1, now[k]), min(l2, now[k])
+            out.append(Spec(f"{name}@{other}", f"{s.description} of the {other} loop, {axis} gains varied",
+                            lambda d, other=other, k=k: values(d, other)[k], s.direction, l1, l2,
+                            kind="hard", units=s.units, source=f"guard: {s.source}"))
+    return out
+
