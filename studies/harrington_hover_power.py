@@ -16,9 +16,11 @@ with our C_Q at its C_T and the error), ``points_classical_blade.csv`` (the same
 ``faired.csv`` (the report's faired curves with ours at the same C_T),
 ``interference.csv`` (coaxial against twice the single rotor, ours and measured),
 ``kappa_int.csv`` (our induced-power interference beside momentum theory),
+``profile_split.csv`` (each measured point less our drag-free power: the profile power
+and mean drag coefficient the data ask of the blade, and the window of it within 5 %),
 ``hover_power.png``.
 
-Run: ``rotorwake harrington-hover-power`` (about 7 minutes on one core at the
+Run: ``rotorwake harrington-hover-power`` (about 8 minutes on one core at the
 default wake resolution, C_T and C_Q averaged over six revolutions after each trim; ``--small``: a coarse wake and three thrusts, for the tests).
 """
 from __future__ import annotations
@@ -33,12 +35,19 @@ import pandas as pd
 from aircraft.wake import WakeSettings
 from studies.analysis.harrington import (INVISCID_BLADE, MOMENTUM_BOUNDS, errors_at_points, faired_curves,
                                          harrington_rotor2, hover_power, induced_interference, interference,
-                                         measured_points)
+                                         measured_points, profile_split)
 
 #: (configuration, tip speed [ft/s]) of the report's tests
 CASES = (("single", 262.0), ("single", 392.0), ("coaxial", 327.0), ("coaxial", 392.0))
 #: the cases also run with the classical blade (constant cd0 = 0.010, no thickness, no compressibility)
 BASELINE_CASES = (("single", 262.0), ("coaxial", 392.0))
+
+
+def _inviscid_grid(small, kind):
+    """Thrusts of the drag-free runs of the profile split: the comparison band and a little beyond."""
+    if small:
+        return _grids(True)[kind]
+    return _grids(False)[kind] if kind == "single" else np.arange(0.0015, 0.00651, 0.0005)
 
 
 def _grids(small):
@@ -84,6 +93,15 @@ def run(out_dir="results/harrington_hover_power", small=False):
     kappa = induced_interference(coax_i, single_i)
     for name, value in MOMENTUM_BOUNDS.items():
         kappa[f"momentum: {name}"] = value
+    split = []
+    for kind, vt in CASES:
+        inv = hover_power(harrington_rotor2(vt, kind == "coaxial", INVISCID_BLADE), _inviscid_grid(small, kind),
+                          settings, average_revs=revs)
+        mine = points[(points.configuration.str.startswith(kind)) & (points.tip_speed_ft_s == vt)]
+        real_case = real[(real.configuration == kind) & (real.tip_speed_ft_s == vt)]
+        split.append(profile_split(mine, inv, float(mine.sigma.iloc[0]), ours=real_case))
+    split = pd.concat(split, ignore_index=True)
+    split["in_band"] = (split.CT >= 0.002) & (split.CT <= 0.006)
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -93,6 +111,7 @@ def run(out_dir="results/harrington_hover_power", small=False):
     against_faired.to_csv(out / "faired.csv", index=False)
     ratio.to_csv(out / "interference.csv", index=False)
     kappa.to_csv(out / "kappa_int.csv", index=False)
+    split.to_csv(out / "profile_split.csv", index=False)
     _figure(curves, points, faired, errors).savefig(out / "hover_power.png", dpi=90)
 
     band = errors[errors.in_band]
@@ -108,6 +127,11 @@ def run(out_dir="results/harrington_hover_power", small=False):
     print(ratio.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
     print("\nour induced-power interference factor (drag-free sections), 392 ft/s:")
     print(kappa.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+    print("\nprofile power the measured points ask of the blade (measured less our drag-free power), as a mean "
+          "c_d = 8 C_Q0 / sigma; low/high: the window within 5 %:")
+    print(split[split.in_band][["configuration", "tip_speed_ft_s", "CT", "cd_eq", "cd_eq_low", "cd_eq_high",
+                                "cd_eq_ours", "profile_ratio"]].to_string(index=False,
+                                                                          float_format=lambda v: f"{v:.4g}"))
     return errors
 
 

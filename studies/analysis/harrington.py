@@ -7,6 +7,8 @@
     hover_power(config, ct_values)          trimmed C_T, C_Q of our wake at each thrust
     errors_at_points(ours, points)          our C_Q at each measured C_T and the error
     interference(...)                       coaxial against isolated rotors, beside momentum theory
+    profile_split(points, inviscid, sigma)  the measured power less our induced power: the profile power
+                                            and mean drag coefficient the data ask of the blade
 
 The blade inputs come from the report's geometry and published section data,
 the same for every point and both tip speeds (nothing is fitted to the power data):
@@ -40,7 +42,7 @@ from aircraft.wake.trim import run_wake, trim_wake
 
 __all__ = ["RADIUS", "CHORD", "SPACING", "HARRINGTON_BLADE", "harrington_rotor2", "measured_points",
            "faired_curves", "hover_power", "errors_at_points", "interference", "induced_interference",
-           "MOMENTUM_BOUNDS", "INVISCID_BLADE"]
+           "MOMENTUM_BOUNDS", "INVISCID_BLADE", "profile_split"]
 
 DATA = Path(__file__).resolve().parent / "data" / "harrington_rotor2"
 RADIUS = 12.5 * FT            #: rotor radius [m]
@@ -253,3 +255,60 @@ def induced_interference(coaxial_inviscid, single_inviscid):
         isolated = _interpolate(single_inviscid, r.CT_U) + _interpolate(single_inviscid, r.CT_L)
         rows.append({"CT": r.CT, "CT_U": r.CT_U, "CT_L": r.CT_L, "kappa_int": float(r.CQ / isolated)})
     return pd.DataFrame(rows)
+
+
+def profile_split(points, inviscid, sigma, ours=None, tolerance=0.05):
+    """Split each measured power into our induced power and the profile power left for the blade.
+
+    At each measured point ``C_Q0 = C_Q - C_Qi`` with ``C_Qi`` our drag-free wake's
+    torque at the same thrust, and the profile power's equivalent mean drag
+    coefficient ``c_d,eq = 8 C_Q0 / sigma`` (uniform drag on a full-span rectangular
+    blade, ``C_Q0 = sigma c_d / 8``).  ``cd_eq_low, cd_eq_high`` bound the mean drag
+    coefficient that puts our power within ``tolerance`` of the point's (our induced
+    power held): one section polar can meet every point only if these windows,
+    read at each point's blade loading and Reynolds number, admit it.
+
+    Parameters
+    ----------
+    points : pandas.DataFrame
+        Measured ``CT, CQ`` of one configuration and tip speed.
+    inviscid : pandas.DataFrame
+        :func:`hover_power` of the same rotor with :data:`INVISCID_BLADE`.
+    sigma : float
+        Solidity of the C_Q normalisation [-] (coaxial: both rotors, 0.152).
+    ours : pandas.DataFrame, optional
+        :func:`hover_power` with the real blade: adds our profile power
+        ``CQ0_ours = C_Q - C_Qi`` and ``profile_ratio`` (the factor on it the point asks for).
+    tolerance : float
+        Relative power error of the ``cd_eq`` window [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``points`` with ``CQ_induced, CQ0, cd_eq, cd_eq_low, cd_eq_high`` (NaN outside
+        the thrusts run) and, with ``ours``, ``CQ0_ours, cd_eq_ours, profile_ratio``.
+
+    Examples
+    --------
+    >>> inv = pd.DataFrame({"CT": [0.002, 0.004], "CQ": [1e-4, 2e-4]})
+    >>> pts = pd.DataFrame({"CT": [0.003], "CQ": [2.5e-4]})
+    >>> s = profile_split(pts, inv, 0.08)
+    >>> round(float(s.CQ0[0]), 7), round(float(s.cd_eq[0]), 4)
+    (0.0001, 0.01)
+    """
+    if not (isinstance(sigma, (int, float)) and not isinstance(sigma, bool) and sigma > 0):
+        raise ValueError(f"sigma must be a positive solidity, got {sigma!r}")
+    if not (isinstance(tolerance, (int, float)) and 0 <= tolerance < 1):
+        raise ValueError(f"tolerance must be a fraction in [0, 1), got {tolerance!r}")
+    out = points.copy()
+    ct = out.CT.to_numpy()
+    out["CQ_induced"] = _interpolate(inviscid, ct)
+    out["CQ0"] = out.CQ - out.CQ_induced
+    out["cd_eq"] = 8.0 * out.CQ0 / sigma
+    out["cd_eq_low"] = 8.0 * ((1.0 - tolerance) * out.CQ - out.CQ_induced) / sigma
+    out["cd_eq_high"] = 8.0 * ((1.0 + tolerance) * out.CQ - out.CQ_induced) / sigma
+    if ours is not None:
+        out["CQ0_ours"] = _interpolate(ours, ct) - out.CQ_induced
+        out["cd_eq_ours"] = 8.0 * out.CQ0_ours / sigma
+        out["profile_ratio"] = out.CQ0 / out.CQ0_ours
+    return out

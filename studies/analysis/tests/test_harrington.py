@@ -7,7 +7,8 @@ import pytest
 
 from aircraft.configs import FT
 from studies.analysis.harrington import (HARRINGTON_BLADE, MOMENTUM_BOUNDS, errors_at_points, faired_curves,
-                                         harrington_rotor2, induced_interference, interference, measured_points)
+                                         harrington_rotor2, induced_interference, interference, measured_points,
+                                         profile_split)
 
 
 def test_configuration_follows_the_report_geometry():
@@ -67,6 +68,30 @@ def test_induced_interference_by_hand():
     assert MOMENTUM_BOUNDS["rotors in one plane"] == pytest.approx(2 ** 1.5 / 2)
 
 
+def test_profile_split_by_hand():
+    # drag-free power: ideal momentum with kappa = 1.15, C_Qi = 1.15 C_T^1.5 / sqrt 2, sampled finely
+    inv = pd.DataFrame({"CT": np.arange(0.001, 0.0071, 0.00025)})
+    inv["CQ"] = 1.15 * inv.CT ** 1.5 / math.sqrt(2.0)
+    # "measured": that plus the profile power of a mean c_d = 0.012 at sigma = 0.076, C_Q0 = sigma c_d / 8;
+    # ours: the same with c_d = 0.010
+    ct = np.array([0.0025, 0.005])
+    pts = pd.DataFrame({"CT": ct, "CQ": 1.15 * ct ** 1.5 / math.sqrt(2.0) + 0.076 * 0.012 / 8})
+    ours = inv.assign(CQ=inv.CQ + 0.076 * 0.010 / 8)
+    s = profile_split(pts, inv, 0.076, ours=ours)
+    # the monotone cubic reproduces C_T^1.5 between samples 0.00025 apart to ~1e-9 in C_Q, i.e. ~1e-7 in c_d
+    assert s.cd_eq.to_numpy() == pytest.approx([0.012, 0.012], abs=1e-6)
+    assert s.cd_eq_ours.to_numpy() == pytest.approx([0.010, 0.010], abs=1e-6)
+    assert s.profile_ratio.to_numpy() == pytest.approx([1.2, 1.2], abs=1e-3)
+    # the 5 % window: c_d that moves the power by +-5 % of the measured C_Q, 8 (0.05 C_Q) / sigma either side
+    half = 8 * 0.05 * pts.CQ.to_numpy() / 0.076
+    assert (s.cd_eq_high - s.cd_eq).to_numpy() == pytest.approx(half, rel=1e-12)
+    assert (s.cd_eq - s.cd_eq_low).to_numpy() == pytest.approx(half, rel=1e-12)
+    with pytest.raises(ValueError, match="sigma"):
+        profile_split(pts, inv, 0.0)
+    with pytest.raises(ValueError, match="tolerance"):
+        profile_split(pts, inv, 0.076, tolerance=1.5)
+
+
 def test_the_study_runs_small_and_writes_its_files(tmp_path):
     # a coarse wake and three thrusts: the plumbing end to end (numbers not judged)
     import subprocess
@@ -75,8 +100,10 @@ def test_the_study_runs_small_and_writes_its_files(tmp_path):
                            str(tmp_path)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     for name in ("points.csv", "points_classical_blade.csv", "curves.csv", "faired.csv", "interference.csv",
-                 "kappa_int.csv", "hover_power.png"):
+                 "kappa_int.csv", "profile_split.csv", "hover_power.png"):
         assert (tmp_path / name).is_file(), name
     pts = pd.read_csv(tmp_path / "points.csv")
     assert len(pts) == len(measured_points()) and {"CQ_ours", "error", "in_band"} <= set(pts.columns)
     assert set(pd.read_csv(tmp_path / "curves.csv").blade) == {"real", "classical"}
+    split = pd.read_csv(tmp_path / "profile_split.csv")
+    assert len(split) == len(measured_points()) and {"cd_eq", "cd_eq_low", "cd_eq_high"} <= set(split.columns)
