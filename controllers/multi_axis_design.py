@@ -450,7 +450,7 @@ class MultiAxisResult:
 def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains=None, command_models=None,
                       actuator=None, sensor_delay=0.01, mte="all other", crossover_start=None, drb_start=0.9,
                       settings=None, later_settings=None, max_sweeps=3, gain_tolerance=0.01, progress=True,
-                      limits="hover", speed="hover", start_closed=False, guard_other_axes=False):
+                      limits="hover", speed="hover", start_closed=False, guard_other_axes=False, guard_level="auto"):
     """Design the EMF loops of several axes of one MIMO aircraft against every axis's specs.
 
     Parameters
@@ -489,8 +489,14 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         the stability margins of the other closed loops on the whole aircraft
         (:func:`controllers.multi_axis_guard.guard_specs`), so that raising one
         axis's crossover cannot take another loop's margin below its Level 1
-        boundary (or below what it has, if that is lower): for an aircraft whose
-        loops couple strongly, e.g. pitch and heave at speed.
+        boundary if that loop is closed around an unstable plant, or below its
+        Level 2 boundary otherwise (or below what it has, if that is lower; the
+        next sweep re-tunes a stable loop eroded within Level 2): for an aircraft
+        whose loops couple strongly, e.g. pitch and heave at speed.
+    guard_level : {"auto", 1, 2}
+        The other loops' boundary the guards keep: ``"auto"`` as just said, or
+        Level 1 or 2 for every loop (Level 1 freezes an axis whose tuning erodes
+        any loop left at its Level 1 edge).
     crossover_start : dict, optional
         Axis -> first crossover boundary [rad/s] (default :data:`DEFAULT_CROSSOVER_START`).
     drb_start : float
@@ -582,7 +588,8 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
             plants[a] = eff
             design = AxisEMFDesign(eff, gains[a], axis=a, command_model=cms[a], actuator=actuator,
                                    sensor_delay=sensor_delay)
-            guards = (guard_specs(plant, others, design, {b: axis_specs(b, mte=mte, speed=speed) for b in others})
+            guards = (guard_specs(plant, others, design, {b: axis_specs(b, mte=mte, speed=speed) for b in others},
+                                  level=guard_level)
                       if guard_other_axes and others else [])
             factory = (lambda wc, wd, a=a, guards=guards: axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed)
                        + guards)

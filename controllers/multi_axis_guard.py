@@ -12,17 +12,28 @@ gains of the axis being tuned, so the DMO stops raising where the other axis
 would lose its margin. CONDUIT grades every loop's specs on every gain at once;
 this is the same constraint in the sequential loop closure.
 
-Each guard's boundary is the other axis's own Level 1 boundary, or the value it
+Each guard's boundary is the other axis's own Level 1 boundary if that axis's
+loop is closed around an unstable plant (its effective plant, the tuned axis
+in the loop, has a pole in the right half plane) and its Level 2 boundary
+otherwise, or the value it
 has when the guard is built if that is already lower (a guard never asks for a
-margin the other axis does not have: it only forbids taking margin away).
+margin the other axis does not have: it only forbids taking margin away). Not
+Level 1: the sequential DMO leaves every loop at the edge of its own Level 1
+margins, so a Level 1 guard on every loop freezes every later axis: a stable
+loop eroded a little is re-tuned in the next sweep, and Level 2 only forbids its
+collapse. A loop around an unstable plant cannot be re-tuned back: the margins
+any gains can reach fall as its unstable pole moves out, which is what the other
+loops do to it; so it keeps its Level 1 boundary.
 """
 from __future__ import annotations
 
 from collections import OrderedDict
 
+import control
 import numpy as np
 
 from . import metrics as m
+from .emf import PIDGains
 from .multi_axis import AxisLoop, MultiAxisEMF
 from .specs import Spec
 
@@ -38,6 +49,19 @@ _CACHE_SIZE = 64
 GUARD_OMEGA = np.geomspace(0.02, 100.0, 500)
 
 
+# a plant pole further right than this [1/s] makes the plant unstable (not an integrator at the origin)
+_UNSTABLE_POLE = 1e-6
+
+
+def _unstable_plant(plant, loops, current, other, kwargs):
+    """Whether ``other``'s loop is closed around an unstable plant (the tuned axis at its current gains)."""
+    slot = AxisLoop(PIDGains(0.0, 0.0, 0.0), inverse_plant=control.tf([1.0], [1.0]))
+    others = {b: lp for b, lp in loops.items() if b != other}
+    emf = MultiAxisEMF(plant, {**others, current.axis: AxisLoop.from_design(current), other: slot}, **kwargs)
+    poles = emf.effective_plant(other).poles()
+    return bool(np.size(poles) and np.max(np.real(poles)) > _UNSTABLE_POLE)
+
+
 def _margins(view):
     """(Nichols margin, |gain margin| [dB], phase margin [deg]) of one axis's broken loop."""
     loop = view.broken_loop()
@@ -45,7 +69,7 @@ def _margins(view):
     return m.nichols_margin(loop, GUARD_OMEGA), abs(gm), pm
 
 
-def guard_specs(plant, loops, current, spec_lists, channels=None):
+def guard_specs(plant, loops, current, spec_lists, channels=None, level="auto"):
     """Specs that keep the other closed loops' stability margins while ``axis`` is tuned.
 
     Parameters
@@ -64,17 +88,21 @@ def guard_specs(plant, loops, current, spec_lists, channels=None):
         are read from it (an axis or spec missing from it is not guarded).
     channels : dict, optional
         Axis channels (default :data:`~controllers.multi_axis.AXIS_CHANNELS`).
+    level : {"auto", 1, 2}
+        Which of the other axis's boundaries a guard keeps (see the module notes):
+        ``"auto"`` (default) Level 1 for a loop around an unstable plant, Level 2
+        for the others.
 
     Returns
     -------
     list of Spec
         Hard specs named ``"<spec>@<other axis>"``, each graded on the whole
-        aircraft; boundaries ``min(level, value now)`` (see the module notes).
+        aircraft; boundaries ``min(boundary of level, value now)`` (see the module notes).
 
     Raises
     ------
     ValueError
-        If the tuned axis is among ``loops``.
+        If the tuned axis is among ``loops``, or ``level`` is not "auto", 1 or 2.
 
     Examples
     --------
@@ -92,6 +120,8 @@ def guard_specs(plant, loops, current, spec_lists, channels=None):
     ['NicMgG1@pitch', 'StbMgG1.GM@pitch', 'StbMgG1.PM@pitch']
     """
     axis = current.axis
+    if isinstance(level, bool) or level not in ("auto", 1, 2):
+        raise ValueError(f"guard_specs: level must be 'auto', 1 or 2, got {level!r}")
     if axis in loops:
         raise ValueError(f"guard_specs: the tuned axis {axis!r} must not be among the other loops")
     kwargs = {} if channels is None else {"channels": channels}
@@ -110,13 +140,16 @@ def guard_specs(plant, loops, current, spec_lists, channels=None):
     for other in loops:
         by_name = {s.name: s for s in spec_lists.get(other, ())}
         now = values(current, other)
+        keep = level if level != "auto" else (1 if _unstable_plant(plant, loops, current, other, kwargs) else 2)
         for k, name in enumerate(GUARDED_SPECS):
             s = by_name.get(name)
             if s is None:
                 continue
-            l1, l2 = s.level1, s.level2
+            # at Level 2 the tuned axis may take another loop's margin down to its Level 2 (that loop
+            # is re-tuned in the next sweep), never below it; at Level 1 it may take none of it
+            l1 = l2 = s.level2 if keep == 2 else s.level1
             if np.isfinite(now[k]):
-                l1, l2 = min(l1, now[k]), min(l2, now[k])
+                l1 = l2 = min(l1, now[k])
             out.append(Spec(f"{name}@{other}", f"{s.description} of the {other} loop, {axis} gains varied",
                             lambda d, other=other, k=k: values(d, other)[k], s.direction, l1, l2,
                             kind="hard", units=s.units, source=f"guard: {s.source}"))
