@@ -37,12 +37,17 @@ from .emf import PIDGains
 from .multi_axis import AxisLoop, MultiAxisEMF
 from .specs import Spec
 
-__all__ = ["GUARDED_SPECS", "GUARD_OMEGA", "guard_specs"]
+__all__ = ["GUARDED_SPECS", "GUARD_OMEGA", "GUARD_TOLERANCE", "guard_specs"]
 
 #: the other axes' specs a guard grades: the hard stability margins, loop broken at the mixer input
 GUARDED_SPECS = ("NicMgG1", "StbMgG1.GM", "StbMgG1.PM")
 # guard values kept per axis design (the DMO grades one candidate's specs several times)
 _CACHE_SIZE = 64
+#: how far inside its boundary a guard holds another loop [spec units]: the guards read the margins
+#: on :data:`GUARD_OMEGA`, the final tables on the metrics' default grid, and the two differ by up to
+#: 1e-5 (Nichols), 1e-5 dB and 2e-3 deg on the forward-flight loops; ten times that and more keeps a
+#: loop the guard holds at its boundary met on the final grid too
+GUARD_TOLERANCE = {"NicMgG1": 1e-3, "StbMgG1.GM": 0.01, "StbMgG1.PM": 0.05}
 #: grid of the guards' margins [rad/s]: an eighth of the metrics' default points (the DMO grades
 #: hundreds of candidates, each with every other axis); on the forward-flight aircraft's pitch loop
 #: the margins it gives differ from the default grid's by < 1e-5 dB and < 2e-3 deg
@@ -97,7 +102,8 @@ def guard_specs(plant, loops, current, spec_lists, channels=None, level="auto"):
     -------
     list of Spec
         Hard specs named ``"<spec>@<other axis>"``, each graded on the whole
-        aircraft; boundaries ``min(boundary of level, value now)`` (see the module notes).
+        aircraft; boundaries ``min(boundary of level + GUARD_TOLERANCE, value now)``
+        (see the module notes).
 
     Raises
     ------
@@ -148,6 +154,8 @@ def guard_specs(plant, loops, current, spec_lists, channels=None, level="auto"):
             # at Level 2 the tuned axis may take another loop's margin down to its Level 2 (that loop
             # is re-tuned in the next sweep), never below it; at Level 1 it may take none of it
             l1 = l2 = s.level2 if keep == 2 else s.level1
+            # the boundary a tolerance inside the level, but never above what the loop has now
+            l1 = l2 = l1 + GUARD_TOLERANCE[name]
             if np.isfinite(now[k]):
                 l1 = l2 = min(l1, now[k])
             out.append(Spec(f"{name}@{other}", f"{s.description} of the {other} loop, {axis} gains varied",

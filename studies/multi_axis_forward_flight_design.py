@@ -19,6 +19,17 @@ pitch loop removes: the loops are closed pitch first, and every loop is closed a
 :data:`START_GAINS` from the first sweep (``start_closed``), so that no axis is
 designed on a plant it cannot stabilise.
 
+The loops couple: the vertical-rate loop on the collective moves the pitch loop's
+unstable pole out (about 0.5 1/s with the other loops open, over 1.5 1/s with the
+heave loop at its own highest crossover), beyond what any pitch gains can hold
+with Level 1 margins; designed each against its own specs alone, the heave loop
+takes the pitch axis's margins away. So every axis is also tuned against the
+other closed loops' stability margins on the whole aircraft
+(``guard_other_axes``, :mod:`controllers.multi_axis_guard`): a loop closed around
+an unstable plant (here pitch) keeps its Level 1 margins, the others their Level 2
+ones (the next sweep re-tunes them). The global check grades each axis's own
+specs only, so it may find a higher crossover for an axis that a guard held back.
+
 Commanded responses, the ones a forward-flight explicit-model-following design uses
 within the library's four channels:
 

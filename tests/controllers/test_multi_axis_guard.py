@@ -7,7 +7,7 @@ from controllers import PIDGains
 from controllers import metrics as m
 from controllers.multi_axis import AxisLoop
 from controllers.multi_axis_design import AxisEMFDesign, _effective_plant, axis_specs
-from controllers.multi_axis_guard import GUARD_OMEGA, GUARDED_SPECS, guard_specs
+from controllers.multi_axis_guard import GUARD_OMEGA, GUARD_TOLERANCE, GUARDED_SPECS, guard_specs
 
 
 def _plant(coupling):
@@ -53,7 +53,8 @@ def test_coupled_guard_moves_with_the_tuned_gains():
 def test_guard_boundary_is_the_level_or_what_the_other_axis_has_now(level):
     plant, pitch, loops, roll = _setup(1.5, PIDGains(1.0, 0.1, 0.3))
     specs = axis_specs("pitch")
-    bound = {s.name: (s.level1 if level == 1 else s.level2) for s in specs}
+    bound = {s.name: (s.level1 if level == 1 else s.level2) + GUARD_TOLERANCE[s.name] for s in specs
+             if s.name in GUARD_TOLERANCE}
     for g in guard_specs(plant, loops, roll, {"pitch": specs}, level=level):
         now = g.metric(roll)
         assert g.level1 == g.level2 == pytest.approx(min(bound[g.name.split("@")[0]], now))
@@ -97,8 +98,10 @@ def test_auto_level_keeps_level1_for_a_loop_around_an_unstable_plant(pitch_pole,
     loops = {"pitch": AxisLoop.from_design(pitch)}
     roll = AxisEMFDesign(_effective_plant(plant, loops, "roll", None), PIDGains(1.0, 0.1, 0.3), axis="roll")
     specs = axis_specs("pitch")
-    bound = {s.name: (s.level1 if level == 1 else s.level2) for s in specs}
-    other = {s.name: (s.level2 if level == 1 else s.level1) for s in specs}
+    bound = {s.name: (s.level1 if level == 1 else s.level2) + GUARD_TOLERANCE[s.name] for s in specs
+             if s.name in GUARD_TOLERANCE}
+    other = {s.name: (s.level2 if level == 1 else s.level1) + GUARD_TOLERANCE[s.name] for s in specs
+             if s.name in GUARD_TOLERANCE}
     guards = guard_specs(plant, loops, roll, {"pitch": specs})
     for g in guards:
         assert g.level1 == pytest.approx(min(bound[g.name.split("@")[0]], g.metric(roll)))
