@@ -7,6 +7,12 @@ the same specs, at the DMO's final DRB boundary, to
 :func:`controllers.search.global_search` (differential evolution over the three
 gains, no use of the DMO's answer, rays or NLP) and compares the crossovers. The
 answer is trusted when the search cannot beat it by more than ``beat_tolerance``.
+
+A design tuned with guards (``design_multi_axis(..., guard_other_axes=True)``)
+was held to the other closed loops' stability margins too; the search then grades
+the same guards (:func:`controllers.multi_axis_guard.axis_guards`, the other loops
+at their final gains), or else it "beats" the DMO with gains that take another
+loop's margin away.
 """
 from __future__ import annotations
 
@@ -15,13 +21,14 @@ import pandas as pd
 
 from . import metrics as m
 from .multi_axis_design import DEFAULT_CROSSOVER_START, axis_specs
+from .multi_axis_guard import axis_guards
 from .search import global_search
 from .specs import evaluate_specs
 
 __all__ = ["global_check"]
 
 
-def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte=None, progress=False):
+def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte=None, progress=False, guards=None):
     """Per axis: the DMO's crossover against an independent global search's on the same specs.
 
     Parameters
@@ -40,6 +47,13 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
         boundaries.
     progress : bool
         tqdm counters of the searches.
+    guards : bool or None
+        None (default): as the design was tuned (``result.guard_other_axes``). True:
+        each axis's search also grades its guards, built as
+        :func:`~controllers.multi_axis_design.design_multi_axis` builds them (the other
+        loops closed during the axis's last tuning, at their final gains; the floor at
+        the gains that tuning started from; ``result.guard_level``). False: the axis's
+        own specs only.
 
     Returns
     -------
@@ -50,7 +64,14 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
         the specs the search used), ``search_mimo_met`` and ``search_mimo_crossover``
         (the search's gains in the simultaneous closed loop, the other axes at the DMO's
         gains: every spec but CrsMnG2 met, and the crossover there), the points scored, how many were feasible, and the
-        search's wall time [s].
+        search's wall time [s]; ``guarded`` (the search graded guards), ``guard_specs``
+        (how many) and ``dmo_guards_met`` (the DMO's final gains meet them; True when
+        there are none).
+
+    Raises
+    ------
+    ValueError
+        ``beat_tolerance`` negative or not finite, or ``guards`` not None, True or False.
 
     Examples
     --------
@@ -65,6 +86,9 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
     """
     if not (np.isfinite(beat_tolerance) and beat_tolerance >= 0):
         raise ValueError(f"global_check: beat_tolerance must be >= 0, got {beat_tolerance!r}")
+    if guards is not None and not isinstance(guards, (bool, np.bool_)):
+        raise ValueError(f"global_check: guards must be None, True or False, got {guards!r}")
+    guarded = bool(result.guard_other_axes if guards is None else guards)
     rows = []
     for a in result.emf.axes:
         design, res = result.designs[a], result.dmo_results.get(a)
@@ -78,7 +102,12 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
         graded = table[(table.kind != "objective") & (table.spec != "CrsMnG2")]
         ok = bool(graded.met.all())
         dmo_wc = m.crossover_frequency(design.broken_loop()) if ok else np.nan
-        search = global_search(design, specs, reference_frequency=DEFAULT_CROSSOVER_START[a], maxiter=maxiter,
+        # an old result without the tuning record: the floor at the final gains, every other loop closed
+        start = design.with_gains(result.tuned_from.get(a, design.gains))
+        guard_list = (axis_guards(result.emf.plant, result.emf.loops, start, result.spec_lists,
+                                  closed=result.tuned_with.get(a), level=result.guard_level) if guarded else [])
+        guards_met = bool(evaluate_specs(design, guard_list).met.all()) if guard_list else True
+        search = global_search(design, specs + guard_list, reference_frequency=DEFAULT_CROSSOVER_START[a], maxiter=maxiter,
                                popsize=popsize, seed=seed, progress=progress)
         s_wc = search.crossover
         ratio = s_wc / dmo_wc if np.isfinite(dmo_wc) and np.isfinite(s_wc) else np.nan
@@ -97,5 +126,6 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
                      "search_K_phi": sg.K_phi if sg else np.nan, "search_K_Iphi": sg.K_Iphi if sg else np.nan,
                      "search_K_p": sg.K_p if sg else np.nan, "search_mimo_met": mimo_met,
                      "search_mimo_crossover": mimo_wc, "points": len(search.points),
-                     "feasible_points": int(search.points.feasible.sum()), "search_wall_s": search.wall_time})
+                     "feasible_points": int(search.points.feasible.sum()), "search_wall_s": search.wall_time,
+                     "guarded": guarded, "guard_specs": len(guard_list), "dmo_guards_met": guards_met})
     return pd.DataFrame(rows).set_index("axis")

@@ -51,7 +51,7 @@ from .hq.base import SPEEDS
 from .hq.selector import specs_for
 from .multi_axis import (AXIS_CHANNELS, AxisLoop, MultiAxisEMF, RateCommandModel, SignalNameError,
                          _default_command)
-from .multi_axis_guard import guard_specs
+from .multi_axis_guard import axis_guards
 from .plants import second_order_actuator
 from .specs import evaluate_specs
 
@@ -318,6 +318,14 @@ class MultiAxisResult:
         Axis -> what the DMO said (or why it could not meet the specs).
     wall_time : float
         [s].
+    guard_other_axes : bool
+        Whether each axis was tuned against the other loops' margins too (guards).
+    guard_level : {"auto", 1, 2}
+        The guards' level rule (:func:`controllers.multi_axis_guard.guard_specs`).
+    tuned_from : dict
+        Axis -> the PIDGains its last DMO run started from (the guards' floor).
+    tuned_with : dict
+        Axis -> tuple of the other axes whose loops were closed during its last DMO run.
     """
 
     emf: MultiAxisEMF
@@ -332,6 +340,10 @@ class MultiAxisResult:
     sweeps: int = 0
     #: axis -> ActuatorLimits graded by the OLOP (None: no OLOP on that axis)
     limits: dict = field(default_factory=dict)
+    guard_other_axes: bool = False
+    guard_level: object = "auto"
+    tuned_from: dict = field(default_factory=dict)
+    tuned_with: dict = field(default_factory=dict)
     _coupling: pd.DataFrame | None = field(default=None, repr=False)
 
     def to_pandas(self):
@@ -566,6 +578,7 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     wc0 = {**DEFAULT_CROSSOVER_START, **(crossover_start or {})}
     lims = _axis_limits(limits, axes, cms)
     loops, designs, results, messages, rows, plants = {}, {}, {}, {}, [], {}
+    tuned_from, tuned_with = {}, {}
     if start_closed:
         for a in axes:
             start = AxisEMFDesign(_effective_plant(plant, {}, a, AXIS_CHANNELS), gains[a], axis=a,
@@ -588,9 +601,9 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
             plants[a] = eff
             design = AxisEMFDesign(eff, gains[a], axis=a, command_model=cms[a], actuator=actuator,
                                    sensor_delay=sensor_delay)
-            guards = (guard_specs(plant, others, design, {b: axis_specs(b, mte=mte, speed=speed) for b in others},
-                                  level=guard_level)
-                      if guard_other_axes and others else [])
+            guards = (axis_guards(plant, others, design, {b: axis_specs(b, mte=mte, speed=speed) for b in others},
+                                  level=guard_level) if guard_other_axes else [])
+            tuned_from[a], tuned_with[a] = gains[a], tuple(others)
             factory = (lambda wc, wd, a=a, guards=guards: axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed)
                        + guards)
             ts = time.perf_counter()
@@ -640,7 +653,8 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         spec_lists[a] = axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed)
         tables[a] = evaluate_specs(emf.axis_view(a), spec_lists[a])
     return MultiAxisResult(emf, designs, results, tables, spec_lists, pd.DataFrame(rows), converged, messages,
-                           time.perf_counter() - t0, sweep + 1, limits=lims)
+                           time.perf_counter() - t0, sweep + 1, limits=lims, guard_other_axes=bool(guard_other_axes),
+                           guard_level=guard_level, tuned_from=tuned_from, tuned_with=tuned_with)
 
 
 def _axis_limits(limits, axes, command_models):

@@ -37,7 +37,7 @@ from .emf import PIDGains
 from .multi_axis import AxisLoop, MultiAxisEMF
 from .specs import Spec
 
-__all__ = ["GUARDED_SPECS", "GUARD_OMEGA", "GUARD_TOLERANCE", "guard_specs"]
+__all__ = ["GUARDED_SPECS", "GUARD_OMEGA", "GUARD_TOLERANCE", "axis_guards", "guard_specs"]
 
 #: the other axes' specs a guard grades: the hard stability margins, loop broken at the mixer input
 GUARDED_SPECS = ("NicMgG1", "StbMgG1.GM", "StbMgG1.PM")
@@ -163,3 +163,56 @@ def guard_specs(plant, loops, current, spec_lists, channels=None, level="auto"):
                             kind="hard", units=s.units, source=f"guard: {s.source}"))
     return out
 
+
+
+def axis_guards(plant, loops, current, spec_lists, closed=None, level="auto"):
+    """The guards of the tuned axis: :func:`guard_specs` on the other closed loops, none if there are none.
+
+    The one construction of an axis's guard list, used by
+    :func:`controllers.multi_axis_design.design_multi_axis` while it tunes the axis
+    and by :func:`controllers.multi_axis_check.global_check` when it searches the
+    axis again, so that the check grades the guards the design was tuned against.
+
+    Parameters
+    ----------
+    plant : control.StateSpace
+        The full linear aircraft (named signals).
+    loops : dict
+        Axis -> :class:`~controllers.multi_axis.AxisLoop` of the closed loops; the
+        tuned axis's own entry, if any, is left out.
+    current : controllers.multi_axis_design.AxisEMFDesign
+        The tuned axis's design at the gains its tuning starts from (the guards'
+        floor, see :func:`guard_specs`).
+    spec_lists : dict
+        Axis -> spec list of the other axes; only the Level 1/2 boundaries of
+        :data:`GUARDED_SPECS` are read, which do not depend on the crossover or DRB
+        boundaries nor on the actuator limits of the list.
+    closed : iterable of str, optional
+        The other axes whose loops were closed when the axis was tuned (default every
+        other axis of ``loops``); an axis of ``loops`` not among them is not guarded.
+    level : {"auto", 1, 2}
+        Passed to :func:`guard_specs`.
+
+    Returns
+    -------
+    list of Spec
+        :func:`guard_specs`'s list, empty when no other loop is closed.
+
+    Examples
+    --------
+    >>> import control
+    >>> from controllers import PIDGains
+    >>> from controllers.multi_axis_design import AxisEMFDesign, _effective_plant, axis_specs
+    >>> plant = control.ss([[-1.0, 0, 0, 0], [1, 0, 0, 0], [0, 0, -2.0, 0], [0, 0, 1, 0]],
+    ...                    [[4.0, 0.5], [0, 0], [0.5, -4.0], [0, 0]], np.eye(4), 0,
+    ...                    inputs=["delta_lat", "delta_lon"], outputs=["p", "phi", "q", "theta"])
+    >>> pitch = AxisEMFDesign(_effective_plant(plant, {}, "pitch", None), PIDGains(1.0, 0.1, 0.3), axis="pitch")
+    >>> loops = {"pitch": AxisLoop.from_design(pitch)}
+    >>> roll = AxisEMFDesign(_effective_plant(plant, loops, "roll", None), PIDGains(1.0, 0.1, 0.3), axis="roll")
+    >>> len(axis_guards(plant, loops, roll, {"pitch": axis_specs("pitch")})), axis_guards(plant, {}, roll, {})
+    (3, [])
+    """
+    others = {b: lp for b, lp in loops.items() if b != current.axis and (closed is None or b in closed)}
+    if not others:
+        return []
+    return guard_specs(plant, others, current, {b: spec_lists.get(b, ()) for b in others}, level=level)

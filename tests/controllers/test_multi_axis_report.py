@@ -34,7 +34,8 @@ SWEEPS_COLUMNS = ["sweep", "axis", "K_phi", "K_Iphi", "K_p", "crossover", "relat
                   "crossover_boundary", "wall_s", "message"]
 CHECK_COLUMNS = ["axis", "dmo_crossover", "search_crossover", "ratio", "beaten", "dmo_feasible", "dmo_K_phi",
                  "dmo_K_Iphi", "dmo_K_p", "search_K_phi", "search_K_Iphi", "search_K_p", "search_mimo_met",
-                 "search_mimo_crossover", "points", "feasible_points", "search_wall_s"]
+                 "search_mimo_crossover", "points", "feasible_points", "search_wall_s", "guarded", "guard_specs",
+                 "dmo_guards_met"]
 
 
 def roll_pitch(c=0.3):
