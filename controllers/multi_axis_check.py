@@ -107,8 +107,8 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
         guard_list = (axis_guards(result.emf.plant, result.emf.loops, start, result.spec_lists,
                                   closed=result.tuned_with.get(a), level=result.guard_level) if guarded else [])
         guards_met = bool(evaluate_specs(design, guard_list).met.all()) if guard_list else True
-        search = global_search(design, specs + guard_list, reference_frequency=DEFAULT_CROSSOVER_START[a], maxiter=maxiter,
-                               popsize=popsize, seed=seed, progress=progress)
+        search = global_search(design, specs + guard_list, reference_frequency=DEFAULT_CROSSOVER_START[a],
+                               maxiter=maxiter, popsize=popsize, seed=seed, progress=progress)
         s_wc = search.crossover
         ratio = s_wc / dmo_wc if np.isfinite(dmo_wc) and np.isfinite(s_wc) else np.nan
         beaten = bool(np.isfinite(s_wc) and (not np.isfinite(dmo_wc) or s_wc > dmo_wc * (1 + beat_tolerance)))

@@ -173,6 +173,9 @@ def global_search(design, specs, reference_frequency=2.0, decades=(-3.0, 2.0), m
     specs : list of Spec
         Every hard/soft spec must be met except the crossover-boundary spec (the one
         carrying a :class:`~controllers.smooth.CrossoverMinimum`), whose value is maximised.
+        Each is graded on the candidate design, so specs that read more than its loop
+        (the guards of :func:`controllers.multi_axis_guard.guard_specs`: the other closed
+        loops' margins with the candidate's gains) are graded like the others.
     reference_frequency : float
         w_ref [rad/s] of the natural gain scales k0 = w_ref / |Q(j w_ref)|: K_phi / k0,
         K_Iphi / (k0 w_ref) and K_p w_ref / k0 are searched.
