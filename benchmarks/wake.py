@@ -20,7 +20,10 @@ time inside the kernel calls and the bound an instant kernel would give.
 The march itself: one default coaxial revolution with the compiled march and with
 the former numpy march (:mod:`aircraft.wake.reference`, same numbers) on 1 and on
 2 threads, their ratio, and the share of the revolution spent in the Biot-Savart
-kernel calls (velocity kernel; bound/near-wake influence kernel) for each; and
+kernel calls (velocity kernel; bound/near-wake influence kernel) for each; the
+ceiling the velocity kernel puts on a one-thread speed-up (the former march's time
+over the compiled march's kernel time), with the kernel as shipped and compiled with
+fastmath (measured, not used: it changes results at round-off); and
 the estimated wake time of the 12-state coaxial data set from the 1-thread
 revolution time (:data:`DATASET_REVS` revolutions on 2 single-thread workers).
 
@@ -191,10 +194,55 @@ def gpu_main():
               f"(bound with an instant kernel {bound:.1f}x)")
 
 
+def fastmath_kernel_ratio(m=1504, n=1800, seed=0, reps=10):
+    """Pairs/s of the chained velocity kernel as shipped and compiled with fastmath, 1 thread.
+
+    The fastmath build (reassociation, FMA contraction, approximate reciprocals) is
+    not used by the march: it changes results at round-off, and so every cached
+    wake run and every number computed from one. It is measured here only to bound
+    what a faster per-pair arithmetic could give.
+    """
+    from aircraft.wake import biot_savart as bs
+    numba.set_num_threads(1)
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(n, 3))
+    b = np.roll(a, -1, axis=0)                      # a chain: every segment starts where the last ended
+    r0 = b - a
+    rcl = (0.01 * np.einsum("ij,ij->i", r0, r0)) ** 2
+    linked = np.ones(n, dtype=np.bool_)
+    linked[0] = False
+    cols = [np.ascontiguousarray(x) for x in (*rng.normal(size=(m, 3)).T, *a.T, *b.T, *r0.T)]
+    args = (*cols, rng.normal(size=n) / (4 * np.pi), rcl, linked, 1.0, 1e-12)
+    fast = numba.njit(parallel=True, fastmath=True)(bs._segment_velocity_chain.py_func)
+    rates, outs = {}, {}
+    for name, kernel in (("shipped", bs._segment_velocity_chain), ("fastmath", fast)):
+        outs[name] = kernel(*args)                  # compile / load
+        t0 = time.perf_counter()
+        for _ in range(reps):
+            kernel(*args)
+        rates[name] = reps * m * n / (time.perf_counter() - t0)
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    scale = np.max(np.abs(outs["shipped"]))
+    return rates, float(np.max(np.abs(outs["fastmath"] - outs["shipped"])) / scale)
+
+
+def _kernel_ceiling(t_old, kernel_new):
+    """Print the 1-thread bounds a kernel-bound revolution puts on the march's speed-up."""
+    rates, diff = fastmath_kernel_ratio()
+    gain = rates["fastmath"] / rates["shipped"]
+    print(f"velocity kernel, 1 thread: shipped {rates['shipped']:.3e} pairs/s, fastmath build "
+          f"{rates['fastmath']:.3e} pairs/s ({gain:.2f}x; largest difference {diff:.1e} of the largest "
+          f"velocity: round-off, but every cached run would change)")
+    print(f"ceiling on one thread with everything but the velocity kernel free: {t_old / kernel_new:.2f}x "
+          f"with the shipped kernel, {t_old * gain / kernel_new:.2f}x with the fastmath build "
+          f"(former march {t_old:.3f} s; kernel {kernel_new:.3f} s of the compiled revolution)")
+
+
 def march_comparison(repeats=3):
     """Print the compiled against the former numpy march: revolution time on 1 and
     2 threads (best of ``repeats``, the two interleaved so that other load on a
-    shared machine hits both alike), ratio, kernels' share; the data-set estimate."""
+    shared machine hits both alike), ratio, kernels' share; the kernel-bound ceiling; the
+    data-set estimate."""
     best = {}
     for _ in range(repeats):
         for threads in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
@@ -216,6 +264,7 @@ def march_comparison(repeats=3):
               f"{100 * i_new / t_new:.0f} %): {t_old / t_new:.2f}x faster (target >= 3x)"
               + (f"; CPU time {c_old:.3f} s -> {c_new:.3f} s: {c_old / c_new:.2f}x" if threads == 1 else ""))
     t1_old, t1_new = best[(1, False)][0], best[(1, True)][0]
+    _kernel_ceiling(t1_old, best[(1, True)][1])
     print(f"12-state coaxial data set, wake part ({DATASET_REVS} revs on 2 workers x 1 thread), "
           f"estimated from the 1-thread revolution: former {DATASET_REVS * t1_old / 2 / 60:.1f} min, "
           f"compiled {DATASET_REVS * t1_new / 2 / 60:.1f} min")
