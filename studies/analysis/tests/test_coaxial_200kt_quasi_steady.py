@@ -139,3 +139,11 @@ def test_inflow_time_constants_forward_flight_closed_form():
         kwargs = {"lam0": lam, "mu": mu, "omega": om, **bad}
         with pytest.raises(ValueError):
             inflow_time_constants(**kwargs)
+
+
+def test_examples_run():
+    # the analysis is outside the packages tests/test_doctests.py collects: run its examples here
+    import doctest
+    import studies.analysis.coaxial_200kt_quasi_steady as mod
+    result = doctest.testmod(mod, optionflags=doctest.ELLIPSIS)
+    assert result.attempted >= 8 and result.failed == 0
