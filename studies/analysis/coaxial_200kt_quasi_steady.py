@@ -1,10 +1,11 @@
 """Quasi-steady candidate structures of the coaxial at 200 kt, and the inflow time constants.
 
 At 200 kt (mu = 0.54) the first-order candidates' apparent masses go to zero: the
-inflow lag ``M / (Omega Lbar)`` is a few hundredths of a second, and inside the fit
-band a first-order lag ``1 / (1 + s T)`` differs from a pure delay ``exp(-s T)``
-only by ``(omega T)^2 / 2`` in magnitude, so the cost cannot tell an apparent mass
-from a delay. These structures ask the data the question they can answer::
+inflow lag ``T = M / (Omega Lbar)`` is a few hundredths of a second, its corner ``1/T``
+at or above the top of the fit band, and below the corner a first-order lag
+``1 / (1 + s T)`` differs from the delay ``exp(-s T)`` only at second order in
+``omega T``, so the cost can hardly tell an apparent mass from a delay. These
+structures ask the data the question they can answer::
 
     CoaxialForwardQuasiSteady()                    lambda_i = sum_j K_ij C_j(t - tau_ij), per rotor
                                                    (Eq. 4.3's pattern, no states), 20 parameters
@@ -70,8 +71,8 @@ class CoaxialForwardQuasiSteady(InflowStructure):
         Frame of the parameters (the pattern is the same in both).
     without_lam0_cm : bool
         Drop the ``lam0 / C_M`` gains (entries 13 and 46) and so that response from the
-        fit (§4.4.1.2 allows it; at 200 kt the wake's ``lam0 / C_M`` has a notch near
-        10 rad/s that no gain follows): 16 parameters. Default False.
+        fit (§4.4.1.2 allows it; at 200 kt the wake's ``lam0 / C_M`` has a notch inside
+        the fit band that no gain follows): 16 parameters. Default False.
     shared_delays : bool
         One delay per harmonic and load for both rotors (the lower rotor's entries use
         the upper's ``t<i><j>``; the interference 41, 52, 63 use 14, 25, 36): the same
