@@ -20,7 +20,9 @@ Writes ``results/coaxial_forward_flight/``: ``cost_table.csv``,
 ``parameters.csv``, ``verification.csv``, ``reduction_log.csv``, ``trim.csv``, ``wall_times.csv``,
 ``responses.csv``, ``differences.csv``, ``verdicts.csv``, ``poles.csv``,
 ``structures.csv`` (with ``--candidate-structures``: each candidate structure's size,
-cost, bounds and trust verdict beside the study's own),
+cost, bounds and trust verdict beside the study's own, the quasi-steady and held-mass
+candidates of :mod:`studies.analysis.coaxial_200kt_quasi_steady` included),
+``time_constants.csv`` (with it: Pitt-Peters' inflow lags at the wake trim against the fit band),
 ``bode_fit.png`` (not with ``--small``), ``verification.png``, ``bare_airframe_200kt.png``.
 
 Run: ``python -m studies.cli coaxial-forward-flight`` (coarse wake; ``--small``:
@@ -42,13 +44,15 @@ from aircraft.identification.structures import CoaxialForward12State
 from aircraft.identification import IdentificationSettings
 from aircraft.identification.coaxial_forward_flight import (aircraft_lift_offset, aircraft_thrust_at, identify_coaxial_forward)
 from studies.analysis.coaxial_200kt import cost_table_beside_dissertation, isolated_rotor_check, structures_table
+from studies.analysis.coaxial_200kt_quasi_steady import quasi_steady_candidates, trim_time_constants
 from aircraft.inflow import IdentifiedInflow
 from aircraft.inflow.published import COAXIAL_200KT_12STATE, in_rotor_frames
 from aircraft.wake import WakeSettings
 
 #: Whether the study identifies the candidate structures unless told (``--[no-]candidate-structures``):
 #: off, the five candidates' fits and reductions take about 4.5 min on 2 busy cores (records
-#: cached): 82 s for the four first-order ones, 90-190 s for the near-wake half of Eq. 6.5.
+#: cached): 82 s for the four first-order ones, 90-190 s for the near-wake half of Eq. 6.5;
+#: the seven quasi-steady and held-mass candidates add about 10 s.
 CANDIDATES_DEFAULT = False
 
 #: The coarse wake of the 200 kt runs (about 20x cheaper than the default).
@@ -98,7 +102,9 @@ def candidate_structures(model, t_id, config, ct, los, settings, args):
                                                                     identify_candidate_structures)
     main = model.structure
     label = main.key + ("_near_wake" if getattr(main, "near_wake_only", False) else "")
-    cands = {k: s for k, s in default_candidates().items() if s.spec() != main.spec()}
+    # the library's first-order candidates, then the quasi-steady ones of the analysis
+    cands = {k: s for k, s in {**default_candidates(), **quasi_steady_candidates()}.items()
+             if s.spec() != main.spec()}
     with tempfile.TemporaryDirectory() as tmp:
         # without the cache the records are still computed once: a private cache serves
         # the other candidates (and is thrown away)
@@ -149,7 +155,8 @@ def main(argv=None):
                         help="do not read or write the wake cache (the printed wall times are then the data set's)")
     parser.add_argument("--candidate-structures", action=argparse.BooleanOptionalAction, default=CANDIDATES_DEFAULT,
                         help="also identify the smaller candidate structures (isolated rotors, coaxial 6-state, "
-                             "near-wake half of Eq. 6.5) on the same records, reduce each, and write their trust "
+                             "near-wake half of Eq. 6.5, quasi-steady gain/delay rotors, isolated rotors with "
+                             "Pitt-Peters' masses held) on the same records, reduce each, and write their trust "
                              "verdicts to structures.csv")
     parser.add_argument("--out", default="results/coaxial_forward_flight")
     args = parser.parse_args(argv)
@@ -170,6 +177,8 @@ def main(argv=None):
     t_id = time.perf_counter() - t0
     if args.candidate_structures:
         structures = candidate_structures(model, t_id, config, ct, los, settings, args)
+        lags = trim_time_constants(model.trim.outputs, config, settings.fit_range)
+        lags.to_csv(out / "time_constants.csv", index=False)
     cost = cost_table_beside_dissertation(model)
     params = parameter_table(model)
     cost.to_csv(out / "cost_table.csv", index=False)
@@ -216,6 +225,10 @@ def main(argv=None):
                 print(f"  {row.structure} not trusted: {str(row.reasons)[:300]}")
             if isinstance(row.note, str) and row.note:
                 print(f"  {row.structure}: {row.note[:300]}")
+        print(f"Pitt-Peters inflow lags at the wake trim against the fit band {settings.fit_range} rad/s "
+              "(a lag below its corner is a delay of the same T: the apparent masses cannot be told from "
+              "the delays there):")
+        print(lags.to_string(index=False, float_format=fmt))
         best = structures[structures.largest_trusted]
         print("largest structure the trust rule accepts at 200 kt: "
               + (f"{best.structure.iloc[0]} ({best.free_parameters.iloc[0]} free parameters)" if len(best)
