@@ -18,8 +18,8 @@
     design_multi_axis(aircraft StateSpace): all four EMF loops (roll, pitch, yaw, heave) of one
                  MIMO aircraft, each axis's specs graded on the simultaneous closed loop
                  (MultiAxisEMF), OLOP with the actuators' rate/travel limits (ActuatorLimits)
-    joint_check(result): every axis's gains searched at once (differential evolution), every
-                 loop graded: is the design dominated (every crossover higher, every spec met)?
+    multi_axis_joint.joint_check(result): every axis's gains searched at once, every loop graded:
+                 is the design dominated (every crossover higher, every spec met)?
     multi_axis_report.write_multi_axis_report(result, folder, check=global_check(result)):
                  the design's tables (axes, specs, limits, coupling, sweeps, global check)
                  as CSV files and one HQ window per axis
@@ -36,11 +36,10 @@ from .hq import specs_for, spec_table, HQSpec, BoundaryNotPublishedError
 from .actuator_limits import ActuatorLimits
 from .multi_axis import MultiAxisEMF, RateCommandModel
 from .multi_axis_design import design_multi_axis
-from .multi_axis_joint import joint_check
 
 __all__ = ["roll_design_plant", "hover_roll_plant", "DelayedLTI", "first_order_actuator", "second_order_actuator",
            "crossover_frequency", "gain_phase_margins", "attitude_bandwidth", "EMFDesign", "CommandModel",
            "PIDGains", "Spec", "BandwidthSpec", "default_specs", "evaluate_specs", "SpecEvaluationError",
            "dmo", "DMOSettings", "DMOResult", "InfeasibleDesignError", "design_margins", "optimize",
            "search_designs", "hq_window", "specs_for", "spec_table", "HQSpec", "BoundaryNotPublishedError",
-           "ActuatorLimits", "MultiAxisEMF", "RateCommandModel", "design_multi_axis", "joint_check"]
+           "ActuatorLimits", "MultiAxisEMF", "RateCommandModel", "design_multi_axis"]

@@ -221,9 +221,11 @@ def joint_check(result, maxiter=10, popsize=2, seed=0, tolerance=0.01, decades=1
     result : MultiAxisResult
         From :func:`controllers.multi_axis_design.design_multi_axis`.
     maxiter, popsize : int
-        Differential-evolution generations and population per gain (scipy's meaning:
-        ``popsize`` x 3 x the number of axes candidates per generation). The defaults
-        keep the coaxial four-axis hover design's check within minutes on two cores.
+        Differential-evolution generations after the first and population per gain: a
+        generation holds ``popsize`` x 3 x the number of axes candidates, rounded up to a
+        power of two (balanced Sobol points), so ``maxiter + 1`` generations are scored.
+        The defaults keep the coaxial four-axis hover design's check within a few minutes
+        on two cores.
     seed : int
         Seed of the Sobol initial population and of the evolution (reproducible).
     tolerance : float
@@ -265,9 +267,9 @@ def joint_check(result, maxiter=10, popsize=2, seed=0, tolerance=0.01, decades=1
     >>> quick = DMOSettings(global_samples=0, max_steps=1, polish_evaluations=0)   # one DMO step, no search
     >>> res = design_multi_axis(plant, axes=["roll"], settings=quick, crossover_start={"roll": 10.0},
     ...                         max_sweeps=1, progress=False)    # one DMO step from 10 rad/s
-    >>> check = joint_check(res, maxiter=1, popsize=2)        # a tiny budget: 12 candidates
+    >>> check = joint_check(res, maxiter=1, popsize=2)   # a tiny budget: two generations of 8
     >>> check.evaluations, check.to_pandas().columns[:3].tolist()
-    (12, ['dmo_crossover', 'joint_crossover', 'ratio'])
+    (16, ['dmo_crossover', 'joint_crossover', 'ratio'])
     """
     if not isinstance(result, MultiAxisResult):
         raise TypeError(f"joint_check: result must be a MultiAxisResult, got {type(result).__name__}")

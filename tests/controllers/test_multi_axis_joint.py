@@ -15,11 +15,11 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from controllers import DMOSettings, PIDGains, design_multi_axis, evaluate_specs, joint_check
+from controllers import DMOSettings, PIDGains, design_multi_axis, evaluate_specs
 from controllers.metrics import crossover_frequency
 from controllers.multi_axis import AxisLoop, MultiAxisEMF
 from controllers.multi_axis_design import AxisEMFDesign
-from controllers.multi_axis_joint import JointCheckResult, _FeedbackModes
+from controllers.multi_axis_joint import JointCheckResult, _FeedbackModes, joint_check
 from controllers.plants import first_order_actuator
 
 #: the DMO's bisection tolerance here: the design's crossovers are within this fraction of each axis's optimum
