@@ -19,6 +19,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 
+import control
 import numpy as np
 import pandas as pd
 from scipy.optimize import differential_evolution
@@ -149,62 +150,91 @@ def _grade(emf, specs):
     return out
 
 
-class _FeedbackModes:
-    """The feedback modes of a candidate from a matrix affine in the gains (exact, much faster).
+class _AffineSystem:
+    """A state space whose matrices are affine in the gains, rebuilt from 1 + 3 n exact ones.
 
-    With no algebraic loop in the aircraft (the plant, actuators and sensors strictly
-    proper) the state matrix of the feedback system is A0 + sum_j g_j A_j over the
-    three gains of every axis, every PI block with its integrator state (removed again
-    where the integral gain is zero, as the exact interconnection has none): the interconnection is built 1 + 3 n times here instead of
-    once per candidate, its cost dominating a candidate's grading otherwise. The
-    pilot-path blocks' poles do not depend on the gains. Checked here against the
-    exact interconnection at one more gain set; where they differ (an algebraic
-    loop), candidates are graded by the exact path.
+    ``build(g)`` is the exact interconnection at the gains ``g`` (3 per axis, axis
+    order). With no algebraic loop (plant, actuators and sensors strictly proper) every
+    signal path passes one gain at most, so A, B, C and D are M0 + sum_j g_j M_j with
+    every PI block holding its integrator state; where an integral gain is zero the
+    exact interconnection has no such state, and it is removed again. ``ok`` is False
+    when two probe gain sets (one with the integral gains zero) are not reproduced.
+    """
+
+    def __init__(self, build, n_gains):
+        self.build = build
+        ones = np.ones(n_gains)
+        m1 = self._exact(ones)
+        self.slopes = [np.array([self._exact(ones + np.eye(n_gains)[j])[k] - m1[k] for j in range(n_gains)])
+                       for k in range(4)]
+        self.base = [m1[k] - np.tensordot(ones, self.slopes[k], 1) for k in range(4)]
+        # each PI block's integrator state: the one column of A its integral gain enters
+        cols = [np.flatnonzero(np.any(self.slopes[0][j] != 0, axis=0)) for j in range(1, n_gains, 3)]
+        self.ok = all(c.size == 1 for c in cols)
+        self.integrators = [int(c[0]) if c.size == 1 else -1 for c in cols]
+        probe = np.geomspace(0.3, 3.0, n_gains)
+        no_integral = probe.copy()
+        no_integral[1::3] = 0.0
+        for g in (probe, no_integral):
+            if self.ok:
+                self.ok = all(e.shape == f.shape and np.allclose(f, e, rtol=1e-9, atol=1e-9 * max(np.abs(e).max(initial=0.0), 1.0))
+                              for e, f in zip(self._exact(g), self.matrices(g)))
+
+    def _exact(self, g):
+        sys = self.build(g)
+        self.inputs, self.outputs = list(sys.input_labels), list(sys.output_labels)
+        return [np.asarray(sys.A, float), np.asarray(sys.B, float), np.asarray(sys.C, float),
+                np.asarray(sys.D, float)]
+
+    def matrices(self, g):
+        """(A, B, C, D) at the gains ``g``."""
+        g = np.asarray(g, float)
+        a, b, c, d = (self.base[k] + np.tensordot(g, self.slopes[k], 1) for k in range(4))
+        drop = [k for i, k in enumerate(self.integrators) if g[3 * i + 1] == 0.0]
+        keep = np.setdiff1d(np.arange(a.shape[0]), drop)
+        return a[np.ix_(keep, keep)], b[keep], c[:, keep], d
+
+
+class _FeedbackModes:
+    """What a candidate's grading would interconnect, from affine state spaces (exact, much faster).
+
+    Building the interconnections (:meth:`MultiAxisEMF.feedback_poles` and
+    :meth:`MultiAxisEMF.closed_loop`) dominates a candidate's grading; here they are
+    built 1 + 3 n times (:class:`_AffineSystem`) and each candidate's are put where
+    :class:`MultiAxisEMF` keeps them (default Padé order). The pilot-path blocks'
+    poles do not depend on the gains. Where an affine form does not reproduce the
+    exact interconnection (an algebraic loop), that part is graded by the exact path.
     """
 
     def __init__(self, emf, axes):
         self.emf, self.axes = emf, axes
-        ones = np.ones(3 * len(axes))
-        a1 = self._exact(ones)
-        self.slopes = np.array([self._exact(ones + np.eye(ones.size)[j]) - a1 for j in range(ones.size)])
-        self.base = a1 - np.tensordot(ones, self.slopes, 1)
-        # each PI block's integrator state: the one column its integral gain enters
-        cols = [np.flatnonzero(np.any(self.slopes[3 * i + 1] != 0, axis=0)) for i in range(len(axes))]
-        self.ok = all(c.size == 1 for c in cols)
-        self.integrators = [int(c[0]) if c.size == 1 else -1 for c in cols]
-        probe = np.geomspace(0.3, 3.0, ones.size)
-        no_integral = probe.copy()
-        no_integral[1::3] = 0.0
-        for g in (probe, no_integral):
-            exact, fast = self._exact(g), self.matrix(g) if self.ok else None
-            self.ok = self.ok and (exact.shape == fast.shape and np.allclose(
-                fast, exact, rtol=1e-9, atol=1e-9 * np.abs(exact).max()))
+        n = 3 * len(axes)
+        self.feedback = _AffineSystem(
+            lambda g: control.interconnect(emf.with_gains(self._gains(g))._blocks("feedback"), inplist=[],
+                                           outlist=[], check_unused=False), n)
+        # the whole closed loop only where the specs read it (e.g. a heave height-response fit):
+        # grading the design left it in the design's cache then
+        self.closed = (_AffineSystem(lambda g: emf.with_gains(self._gains(g)).closed_loop(), n)
+                       if ("cl", 3) in emf._cache else None)
+        self.ok = self.feedback.ok
         self.pilot = emf.closed_loop_poles()[emf.feedback_poles().size:]
 
     def _gains(self, g):
         return {a: PIDGains(*g[3 * i:3 * i + 3]) for i, a in enumerate(self.axes)}
 
-    def _exact(self, g):
-        import control
-        sys = control.interconnect(self.emf.with_gains(self._gains(g))._blocks("feedback"), inplist=[],
-                                   outlist=[], check_unused=False)
-        return np.asarray(sys.A, float)
-
     def matrix(self, g):
         """State matrix of the feedback system at the gains ``g`` (3 per axis, in axis order)."""
-        g = np.asarray(g, float)
-        a = self.base + np.tensordot(g, self.slopes, 1)
-        # a zero integral gain: no integrator state, as MultiAxisEMF builds that PI block
-        drop = [k for i, k in enumerate(self.integrators) if g[3 * i + 1] == 0.0]
-        keep = np.setdiff1d(np.arange(a.shape[0]), drop)
-        return a[np.ix_(keep, keep)]
+        return self.feedback.matrices(g)[0]
 
     def seed(self, emf, g):
-        """Put the candidate's poles where :class:`MultiAxisEMF` keeps them (default Padé order)."""
-        if self.ok:
+        """Put the candidate's poles and closed loop where ``emf`` keeps them."""
+        if self.feedback.ok:
             fb = np.linalg.eigvals(self.matrix(g))
             emf._cache[("feedback poles", 3)] = fb
             emf._cache[("poles", 3)] = np.concatenate([fb, self.pilot])
+        if self.closed is not None and self.closed.ok:
+            emf._cache[("cl", 3)] = control.ss(*self.closed.matrices(g), inputs=self.closed.inputs,
+                                               outputs=self.closed.outputs, name="multi-axis EMF closed loop")
         return emf
 
 

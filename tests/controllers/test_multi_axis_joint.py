@@ -108,6 +108,7 @@ def test_affine_feedback_modes_equal_the_exact_interconnection():
     pitch = AxisEMFDesign(control.ss(control.tf([4.0], [1, 1.0]), inputs="delta_lon", outputs="-q"),
                           PIDGains(0.4, 0.0, 0.08), axis="pitch", actuator=act)
     emf = MultiAxisEMF(roll_pitch(0.5), {"roll": AxisLoop.from_design(roll), "pitch": AxisLoop.from_design(pitch)})
+    emf.closed_loop()      # as a heave spec's grading would: the affine closed loop is then built too
     modes = _FeedbackModes(emf, ["roll", "pitch"])
     assert modes.ok
     # every gain non-zero, then a zero integral gain (one state fewer) and a zero rate gain
@@ -116,6 +117,13 @@ def test_affine_feedback_modes_equal_the_exact_interconnection():
         fast = np.sort_complex(np.linalg.eigvals(modes.matrix(g)))
         # round-off of the affine sum and of two eigenvalue solves of a matrix of norm ~1e2
         np.testing.assert_allclose(fast, exact, atol=1e-9)
+        # the whole closed loop (pilot path included), compared where state order cannot matter
+        assert modes.closed.ok
+        cl = emf.with_gains(modes._gains(np.array(g))).closed_loop()
+        rebuilt = control.ss(*modes.closed.matrices(g))
+        s = 1j * np.array([0.3, 3.0, 30.0])
+        # round-off of the affine sum, relative to responses of order one
+        np.testing.assert_allclose(rebuilt(s), cl(s), rtol=1e-8, atol=1e-10)
 
 
 @pytest.mark.parametrize("kwargs, name", [({"maxiter": 0}, "maxiter"), ({"popsize": 1.5}, "popsize"),
