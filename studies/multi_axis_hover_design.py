@@ -79,7 +79,7 @@ def main(argv=None):
                         help="global search: seed (keep it different from the DMO's)")
     parser.add_argument("--joint-check", action=argparse.BooleanOptionalAction, default=True,
                         help="also search every axis's gains at once (joint check: is the design dominated?)")
-    parser.add_argument("--joint-iterations", type=int, default=10, help="joint check: generations")
+    parser.add_argument("--joint-iterations", type=int, default=12, help="joint check: generations")
     parser.add_argument("--joint-population", type=int, default=2, help="joint check: population per gain")
     args = parser.parse_args(argv)
     out = Path(args.out or "results/multi_axis_hover_design" + ("" if args.aircraft == "coaxial" else
