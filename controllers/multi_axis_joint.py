@@ -184,8 +184,10 @@ class _AffineSystem:
         no_integral[1::3] = 0.0
         for g in (probe, no_integral):
             if self.ok:
-                self.ok = all(e.shape == f.shape and np.allclose(f, e, rtol=1e-9, atol=1e-9 * max(np.abs(e).max(initial=0.0), 1.0))
-                              for e, f in zip(self._exact(g), self.matrices(g)))
+                # round-off of the affine sum, relative to the matrices' size
+                self.ok = all(e.shape == f.shape and np.allclose(
+                    f, e, rtol=1e-9, atol=1e-9 * max(np.abs(e).max(initial=0.0), 1.0))
+                    for e, f in zip(self._exact(g), self.matrices(g)))
 
     def _exact(self, g):
         sys = self.build(g)
