@@ -18,6 +18,8 @@
     design_multi_axis(aircraft StateSpace): all four EMF loops (roll, pitch, yaw, heave) of one
                  MIMO aircraft, each axis's specs graded on the simultaneous closed loop
                  (MultiAxisEMF), OLOP with the actuators' rate/travel limits (ActuatorLimits)
+    multi_axis_joint.joint_check(result): every axis's gains searched at once, every loop graded:
+                 is the design dominated (every crossover higher, every spec met)?
     multi_axis_report.write_multi_axis_report(result, folder, check=global_check(result)):
                  the design's tables (axes, specs, limits, coupling, sweeps, global check)
                  as CSV files and one HQ window per axis

@@ -2,7 +2,8 @@
 
 :func:`multi_axis_tables` gathers every table of a
 :class:`~controllers.multi_axis_design.MultiAxisResult` (and, when given, of its
-:func:`~controllers.multi_axis_check.global_check`) under one name each;
+:func:`~controllers.multi_axis_check.global_check` and
+:func:`~controllers.multi_axis_joint.joint_check`) under one name each;
 :func:`write_multi_axis_report` writes them as CSV files, with one HQ window per
 axis as a PNG, and returns the paths; :func:`multi_axis_summary` is the text a
 script prints. A table indexed by a named index (the axis, an assumption's item)
@@ -18,6 +19,7 @@ Files written (``<name>.csv`` per table of :func:`multi_axis_tables`):
 * ``coupling.csv``: :meth:`MultiAxisResult.coupling`;
 * ``sweeps.csv``: :attr:`MultiAxisResult.history`;
 * ``global_check.csv``: the ``check`` table, when one is given;
+* ``joint_check.csv``: :meth:`JointCheckResult.to_pandas` of ``joint``, when one is given;
 * ``hq_window_<axis>.png``: :meth:`MultiAxisResult.plot`, when ``figures`` is true.
 """
 from __future__ import annotations
@@ -29,6 +31,7 @@ import pandas as pd
 
 from .actuator_limits import LIMITS_ASSUMPTIONS
 from .multi_axis_design import MultiAxisResult
+from .multi_axis_joint import JointCheckResult
 
 __all__ = ["limits_table", "limits_assumptions_table", "multi_axis_tables", "multi_axis_summary",
            "write_multi_axis_report", "AXES_SUMMARY_COLUMNS", "CHECK_SUMMARY_COLUMNS"]
@@ -52,6 +55,11 @@ def _check_result(result):
 def _check_table(check):
     if check is not None and not isinstance(check, pd.DataFrame):
         raise TypeError(f"check must be a pandas.DataFrame (from global_check) or None, got {type(check).__name__}")
+
+
+def _check_joint(joint):
+    if joint is not None and not isinstance(joint, JointCheckResult):
+        raise TypeError(f"joint must be a JointCheckResult (from joint_check) or None, got {type(joint).__name__}")
 
 
 def limits_table(result):
@@ -122,7 +130,7 @@ def limits_assumptions_table():
     return pd.Series(LIMITS_ASSUMPTIONS, name="assumption").rename_axis("item").to_frame()
 
 
-def multi_axis_tables(result, check=None):
+def multi_axis_tables(result, check=None, joint=None):
     """Every table of a multi-axis design's report, by the name of its file.
 
     Parameters
@@ -132,6 +140,10 @@ def multi_axis_tables(result, check=None):
     check : pandas.DataFrame, optional
         From :func:`controllers.multi_axis_check.global_check` on ``result``; added as
         ``"global_check"`` when given.
+    joint : JointCheckResult, optional
+        From :func:`controllers.multi_axis_joint.joint_check` on ``result``; its
+        :meth:`~controllers.multi_axis_joint.JointCheckResult.to_pandas` added as
+        ``"joint_check"`` when given.
 
     Returns
     -------
@@ -139,13 +151,15 @@ def multi_axis_tables(result, check=None):
         Name -> pandas.DataFrame, in this order: ``"axes"`` (index axis),
         ``"specs"`` (the spec tables of every axis, with an ``axis`` column),
         ``"limits"`` (:func:`limits_table`), ``"limits_assumptions"`` (index item),
-        ``"coupling"``, ``"sweeps"`` and, with ``check``, ``"global_check"`` (index
-        axis). Units are those of the tables' sources (rad/s, dB, deg, s).
+        ``"coupling"``, ``"sweeps"``, with ``check`` ``"global_check"`` and with
+        ``joint`` ``"joint_check"`` (both index axis). Units are those of the tables'
+        sources (rad/s, dB, deg, s).
 
     Raises
     ------
     TypeError
-        ``result`` is not a MultiAxisResult or ``check`` not a DataFrame.
+        ``result`` is not a MultiAxisResult, ``check`` not a DataFrame or ``joint`` not a
+        JointCheckResult.
 
     Examples
     --------
@@ -164,12 +178,15 @@ def multi_axis_tables(result, check=None):
     """
     _check_result(result)
     _check_table(check)
+    _check_joint(joint)
     tables = {"axes": result.to_pandas(),
               "specs": pd.concat([t.assign(axis=a) for a, t in result.specs.items()], ignore_index=True),
               "limits": limits_table(result), "limits_assumptions": limits_assumptions_table(),
               "coupling": result.coupling(), "sweeps": result.history}
     if check is not None:
         tables["global_check"] = check
+    if joint is not None:
+        tables["joint_check"] = joint.to_pandas()
     return tables
 
 
@@ -230,7 +247,7 @@ def multi_axis_summary(result, check=None, *, design=True, axes_table=None):
     return "\n".join(lines)
 
 
-def write_multi_axis_report(result, folder, *, check=None, figures=True, dpi=110):
+def write_multi_axis_report(result, folder, *, check=None, joint=None, figures=True, dpi=110):
     """Write the report of a multi-axis design: its CSV tables and one HQ window per axis.
 
     Parameters
@@ -242,6 +259,9 @@ def write_multi_axis_report(result, folder, *, check=None, figures=True, dpi=110
     check : pandas.DataFrame, optional
         From :func:`controllers.multi_axis_check.global_check` on ``result``; written as
         ``global_check.csv`` when given.
+    joint : JointCheckResult, optional
+        From :func:`controllers.multi_axis_joint.joint_check` on ``result``; written as
+        ``joint_check.csv`` when given.
     figures : bool
         Also save ``hq_window_<axis>.png`` per axis (:meth:`MultiAxisResult.plot`).
     dpi : float
@@ -257,7 +277,8 @@ def write_multi_axis_report(result, folder, *, check=None, figures=True, dpi=110
     Raises
     ------
     TypeError
-        ``result`` is not a MultiAxisResult or ``check`` not a DataFrame.
+        ``result`` is not a MultiAxisResult, ``check`` not a DataFrame or ``joint`` not a
+        JointCheckResult.
     ValueError
         ``dpi`` is not a positive finite number.
 
@@ -278,12 +299,13 @@ def write_multi_axis_report(result, folder, *, check=None, figures=True, dpi=110
     """
     _check_result(result)
     _check_table(check)
+    _check_joint(joint)
     if isinstance(dpi, bool) or not isinstance(dpi, (int, float)) or not (math.isfinite(dpi) and dpi > 0):
         raise ValueError(f"dpi must be a positive finite number, got {dpi!r}")
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     paths = {}
-    for name, table in multi_axis_tables(result, check).items():
+    for name, table in multi_axis_tables(result, check, joint).items():
         paths[name] = out / f"{name}.csv"
         # a named index (axis, item) is a column of the file; a plain row number is not
         table.to_csv(paths[name], index=table.index.name is not None)

@@ -164,10 +164,11 @@ STUDIES = {s.command: s for s in (
           default_out="results/harrington_hover_power"),
     Study("multi-axis-hover-design", "studies.multi_axis_hover_design",
           "four-axis EMF design of the coaxial in hover with actuator limits in the OLOP: per-axis HQ windows, "
-          "coupling, and a global search that tries to beat each axis's DMO answer", 4.0,
+          "coupling, a global search that tries to beat each axis's DMO answer, and a joint search over every "
+          "axis's gains at once", 8.0,
           default_out="results/multi_axis_hover_design"),
     Study("multi-axis-hover-design-single-rotor", "studies.multi_axis_hover_design_single_rotor",
-          "the same four-axis hover design and global check on the UH-60-like single rotor (Pitt-Peters)", 6.0,
+          "the same four-axis hover design, global and joint checks on the UH-60-like single rotor (Pitt-Peters)", 10.0,
           default_out="results/multi_axis_hover_design_single_rotor"),
     Study("multi-axis-forward-flight-design", "studies.multi_axis_forward_flight_design",
           "four-axis EMF design of the coaxial compound in forward flight (propeller trimmed, u held) against "

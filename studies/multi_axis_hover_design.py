@@ -11,7 +11,10 @@ sinusoid (:data:`controllers.actuator_limits.LIMITS_ASSUMPTIONS`: assumed values
 none is printed for this aircraft). Then :func:`controllers.multi_axis_check.global_check`
 hands each axis's design plant and specs to an independent differential-evolution
 search over the same three gains, seeded differently from every seed the DMO uses,
-and asks whether it can beat the DMO's crossover (a tie is within 1 %).
+and asks whether it can beat the DMO's crossover (a tie is within 1 %). With
+``--joint-check`` (on by default) :func:`controllers.multi_axis_joint.joint_check` searches every
+axis's gains at once, every loop graded on its own specs, and asks whether the
+design is dominated: every axis crossing more than 1 % higher, every spec met.
 
 Files under ``results/multi_axis_hover_design/`` (coaxial) or
 ``results/multi_axis_hover_design_single_rotor/``, written by
@@ -25,6 +28,7 @@ Files under ``results/multi_axis_hover_design/`` (coaxial) or
 * ``coupling.csv``: inter-axis coupling of the closed loop (peak-gain and step ratios);
 * ``sweeps.csv``: the sequential loop closure, sweep by sweep;
 * ``global_check.csv``: DMO against the global search, per axis;
+* ``joint_check.csv``: the joint search's crossovers per axis and its verdict (with ``--joint-check``);
 * ``hq_window_<axis>.png``: one HQ window per axis.
 
 Run: ``rotorwake multi-axis-hover-design`` and ``rotorwake multi-axis-hover-design-single-rotor``.
@@ -43,6 +47,7 @@ from aircraft.helicopter.hold import hold_states
 from aircraft.inflow import DynamicClimb, PittPeters
 from controllers import design_multi_axis
 from controllers.multi_axis_check import global_check
+from controllers.multi_axis_joint import joint_check
 from controllers.multi_axis_report import multi_axis_summary, write_multi_axis_report
 
 __all__ = ["AIRCRAFT", "CHECK_SEED", "hover_plant", "main"]
@@ -72,6 +77,10 @@ def main(argv=None):
     parser.add_argument("--search-population", type=int, default=6, help="global search: population per gain")
     parser.add_argument("--search-seed", type=int, default=CHECK_SEED,
                         help="global search: seed (keep it different from the DMO's)")
+    parser.add_argument("--joint-check", action=argparse.BooleanOptionalAction, default=True,
+                        help="also search every axis's gains at once (joint check: is the design dominated?)")
+    parser.add_argument("--joint-iterations", type=int, default=12, help="joint check: generations")
+    parser.add_argument("--joint-population", type=int, default=2, help="joint check: population per gain")
     args = parser.parse_args(argv)
     out = Path(args.out or "results/multi_axis_hover_design" + ("" if args.aircraft == "coaxial" else
                                                                 "_single_rotor"))
@@ -82,8 +91,13 @@ def main(argv=None):
     print(multi_axis_summary(result))
     check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population,
                          seed=args.search_seed, progress=True)
-    write_multi_axis_report(result, out, check=check)
+    joint = (joint_check(result, maxiter=args.joint_iterations, popsize=args.joint_population,
+                         seed=args.search_seed, progress=True) if args.joint_check else None)
+    write_multi_axis_report(result, out, check=check, joint=joint)
     print(multi_axis_summary(result, check, design=False))
+    if joint is not None:
+        print(joint.to_pandas()[["dmo_crossover", "joint_crossover", "ratio", "dominated", "points",
+                                 "feasible_points", "wall_s"]].to_string(float_format="{:.3g}".format))
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 

@@ -32,6 +32,9 @@ LIMITS_COLUMNS = ["axis", "stick", "rate_limit_deg_s", "travel_deg", "stick_ampl
 COUPLING_COLUMNS = ["stick", "response", "peak_gain_ratio", "step_ratio", "off_peak", "off_rate_peak"]
 SWEEPS_COLUMNS = ["sweep", "axis", "K_phi", "K_Iphi", "K_p", "crossover", "relative_change", "feasible",
                   "crossover_boundary", "wall_s", "message"]
+JOINT_COLUMNS = ["axis", "dmo_crossover", "joint_crossover", "ratio", "dmo_feasible", "dmo_K_phi", "dmo_K_Iphi",
+                 "dmo_K_p", "joint_K_phi", "joint_K_Iphi", "joint_K_p", "dominated", "min_ratio", "points",
+                 "feasible_points", "wall_s"]
 CHECK_COLUMNS = ["axis", "dmo_crossover", "search_crossover", "ratio", "beaten", "dmo_feasible", "dmo_K_phi",
                  "dmo_K_Iphi", "dmo_K_p", "search_K_phi", "search_K_Iphi", "search_K_p", "search_mimo_met",
                  "search_mimo_crossover", "points", "feasible_points", "search_wall_s", "guarded", "guard_specs",
@@ -156,8 +159,22 @@ def test_bad_arguments_are_named(designed, tmp_path):
         write_multi_axis_report(res.to_pandas(), tmp_path)
     with pytest.raises(TypeError, match="check"):
         write_multi_axis_report(res, tmp_path, check=check.to_dict())
+    with pytest.raises(TypeError, match="joint"):
+        write_multi_axis_report(res, tmp_path, joint=check)
     with pytest.raises(ValueError, match="dpi"):
         write_multi_axis_report(res, tmp_path, dpi=0)
     with pytest.raises(TypeError, match="axes_table"):
         multi_axis_summary(res, axes_table=[1, 2])
     assert not any(tmp_path.iterdir())          # nothing written before the arguments were checked
+
+
+def test_the_joint_check_is_written_when_given(designed, tmp_path):
+    from controllers.multi_axis_joint import joint_check
+    res, _ = designed
+    joint = joint_check(res, maxiter=1, popsize=1)      # a tiny budget: what is written is under test
+    paths = write_multi_axis_report(res, tmp_path, joint=joint, figures=False)
+    assert _header(paths["joint_check"]) == JOINT_COLUMNS
+    back = pd.read_csv(paths["joint_check"], index_col="axis")
+    assert list(back.index) == ["roll", "pitch"]
+    assert (back.points == joint.evaluations).all() and back.dominated.dtype == bool
+    assert "joint_check" not in write_multi_axis_report(res, tmp_path / "none", figures=False)
