@@ -134,7 +134,9 @@ def main(argv=None):
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("--out", default="results/multi_axis_forward_flight_design", help="results folder")
     parser.add_argument("--speed", type=float, default=SPEED, help="trim airspeed [m/s]")
-    parser.add_argument("--max-sweeps", type=int, default=3, help="most sweeps of the sequential loop closure")
+    # the guarded loop closure settles in five sweeps at this speed (the largest relative gain
+    # change after three is still above the one-per-cent tolerance); six leave one in hand
+    parser.add_argument("--max-sweeps", type=int, default=6, help="most sweeps of the sequential loop closure")
     parser.add_argument("--search-iterations", type=int, default=15, help="global search: generations")
     parser.add_argument("--search-population", type=int, default=6, help="global search: population per gain")
     parser.add_argument("--search-seed", type=int, default=CHECK_SEED,
