@@ -229,9 +229,14 @@ def test_study_small_end_to_end(tmp_path):
     from aircraft.identification.coaxial_forward_candidates import CANDIDATE_COLUMNS
     structures = pd.read_csv(out / "structures.csv")
     assert structures.columns.tolist() == list(CANDIDATE_COLUMNS) + ["largest_trusted"]
-    assert structures.structure.tolist() == ["coaxial_forward_isolated", "coaxial_forward_isolated_without_lam0_cm",
-                                             "coaxial_forward_6state", "coaxial_forward_6state_without_lam0_cm",
-                                             "coaxial_forward_12state_near_wake"]
+    # the library's candidates, then the study's quasi-steady and held-mass ones, the study's structure last
+    assert structures.structure.tolist() == [
+        "coaxial_forward_isolated", "coaxial_forward_isolated_without_lam0_cm",
+        "coaxial_forward_6state", "coaxial_forward_6state_without_lam0_cm",
+        "coaxial_forward_quasi_steady", "coaxial_forward_quasi_steady_without_lam0_cm",
+        "coaxial_forward_quasi_steady_without_lam0_cm_shared_delays", "coaxial_forward_quasi_steady_interference",
+        "coaxial_forward_quasi_steady_interference_without_lam0_cm", "coaxial_forward_isolated_pitt_peters_m",
+        "coaxial_forward_isolated_pitt_peters_m_without_lam0_cm", "coaxial_forward_12state_near_wake"]
     assert structures.largest_trusted.sum() <= 1 and "largest structure the trust rule accepts" in done.stdout
 
 
