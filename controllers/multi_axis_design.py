@@ -23,7 +23,10 @@ point of the sweeps each axis's design plant *is* its loop in the simultaneous
 closed loop, so the single-axis margins hold for the MIMO loop. That is then
 checked, not assumed: every axis's specs are evaluated on the final
 simultaneous closed loop (:meth:`MultiAxisEMF.axis_view`), and the table says
-which are met and which limit each axis.
+which are met and which limit each axis. Whether the sequential answer is also
+the joint one is checked by :func:`controllers.multi_axis_joint.joint_check`: a
+global search and a constrained NLP over all twelve gains at once, every axis's
+specs its constraints.
 
 Specs per axis come from :func:`controllers.specs_for` (``missing="skip"``: a
 boundary not found printed is left out and the table says so); the crossover

@@ -14,6 +14,13 @@ feasible candidate scoring above one by more than ``tolerance`` raises every
 axis's crossover at once with every spec of every axis still met, so the
 design is dominated.
 
+With ``local_evaluations`` a local constrained search follows (COBYLA, the
+joint NLP over every gain at once): from the best feasible point found, raise
+the smallest crossover ratio with every graded spec's normalised margin of every
+axis held at or above zero; it answers whether the design could be improved by
+moving all gains together a little, where the global stage answers whether it
+could be by moving them far.
+
 Per axis the search runs over the overall gain and the integral and rate gains'
 ratios to it, on log scales around the design's (zero gains included); its first
 generation is a cloud around the design, the design its first member. Each
@@ -29,7 +36,7 @@ from dataclasses import dataclass
 import control
 import numpy as np
 import pandas as pd
-from scipy.optimize import differential_evolution
+from scipy.optimize import Bounds, NonlinearConstraint, differential_evolution, minimize
 from scipy.stats import qmc
 from tqdm.auto import tqdm
 
@@ -70,11 +77,15 @@ class JointCheckResult:
     tolerance : float
         The fraction used for ``dominated``.
     points : pandas.DataFrame
-        Every candidate scored: its gains (``<axis>.K_phi``, ...), ``feasible``,
+        Every candidate scored: its gains (``<axis>.K_phi``, ...), ``stage`` ("global"
+        or "local"), ``feasible``,
         ``min_ratio`` (NaN when infeasible) and ``penalty`` (0 when feasible, else 1 + the
         sum over the axes of the unmet specs' normalised margins, each capped at 10).
     wall_time : float
         [s].
+    local_min_ratio : float
+        The local stage's best feasible smallest crossover ratio (NaN: no local stage,
+        or none of its points feasible).
     """
 
     axes: pd.DataFrame
@@ -83,6 +94,7 @@ class JointCheckResult:
     tolerance: float
     points: pd.DataFrame
     wall_time: float
+    local_min_ratio: float = np.nan
 
     @property
     def evaluations(self):
@@ -94,6 +106,11 @@ class JointCheckResult:
         """Candidates that met every spec of every axis."""
         return int(self.points.feasible.sum()) if len(self.points) else 0
 
+    @property
+    def local_evaluations(self):
+        """Candidates scored by the local stage."""
+        return int((self.points.stage == "local").sum()) if len(self.points) else 0
+
     def to_pandas(self):
         """Per axis: the comparison, with the verdict and the search's size on every row.
 
@@ -101,10 +118,12 @@ class JointCheckResult:
         -------
         pandas.DataFrame
             :attr:`axes` plus ``dominated``, ``min_ratio``, ``points`` (evaluations scored),
-            ``feasible_points`` and ``wall_s`` [s] (the same on every row).
+            ``feasible_points``, ``local_points`` (of them, the local stage's),
+            ``local_min_ratio`` and ``wall_s`` [s] (the same on every row).
         """
         return self.axes.assign(dominated=self.dominated, min_ratio=self.min_ratio, points=self.evaluations,
-                                feasible_points=self.feasible_evaluations, wall_s=self.wall_time)
+                                feasible_points=self.feasible_evaluations, local_points=self.local_evaluations,
+                                local_min_ratio=self.local_min_ratio, wall_s=self.wall_time)
 
     def plot(self, fig=None):
         """Feasible candidates' crossover ratio per axis, the design's at one; returns a Figure.
@@ -147,13 +166,15 @@ def _graded(specs):
 
 
 def _grade(emf, specs):
-    """Per axis (crossover [rad/s], unmet margins); the margins are -inf on an unstable loop."""
+    """Per axis (crossover [rad/s], unmet margins, every graded spec's margin); the margins are
+    -inf on an unstable loop."""
     out = {}
     for a, graded in specs.items():
         view = emf.axis_view(a)
         table = evaluate_specs(view, graded)
-        bad = table[~table.met.astype(bool)]
-        out[a] = (m.crossover_frequency(view.broken_loop()), bad.margin.astype(float).to_numpy())
+        met = table.met.astype(bool).to_numpy()
+        margins = table.margin.astype(float).to_numpy()
+        out[a] = (m.crossover_frequency(view.broken_loop()), margins[~met], margins)
     return out
 
 
@@ -252,7 +273,8 @@ def _check_int(name, v):
         raise ValueError(f"joint_check: {name} must be an integer >= 1, got {v!r}")
 
 
-def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1.5, progress=False):
+def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1.5, local_evaluations=0,
+                progress=False):
     """Search every axis's gains at once for a design that beats this one on every axis.
 
     Parameters
@@ -280,6 +302,13 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
         the overall gain). The ratios' ranges also reach below a thousandth, where the gain
         is zero (a zero gain of the design sits there). The design's own gains
         are one member of the first generation.
+    local_evaluations : int
+        Budget of the local stage (0: none): a COBYLA search (scipy) from the best
+        feasible point of the global stage (the design when none beats it) over the
+        same variables and box, maximising the smallest crossover ratio subject to
+        every graded spec's normalised margin >= 0 on every axis (each clipped to
+        +-10, so that an unstable candidate, whose margins are -inf, is a finite
+        violation). Its initial step is a tenth of a decade.
     progress : bool
         Show a tqdm counter of the evaluated candidates.
 
@@ -294,8 +323,8 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
     TypeError
         ``result`` is not a MultiAxisResult.
     ValueError
-        ``maxiter``, ``popsize``, ``tolerance`` or ``decades`` out of range (the argument
-        is named).
+        ``maxiter``, ``popsize``, ``tolerance``, ``decades`` or ``local_evaluations``
+        out of range (the argument is named).
 
     Examples
     --------
@@ -320,6 +349,9 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
     if isinstance(decades, bool) or not isinstance(decades, (int, float, np.floating)) or not (
             np.isfinite(decades) and decades > 0):
         raise ValueError(f"joint_check: decades must be a finite number > 0, got {decades!r}")
+    if isinstance(local_evaluations, bool) or not isinstance(local_evaluations, (int, np.integer)) or \
+            local_evaluations < 0:
+        raise ValueError(f"joint_check: local_evaluations must be an integer >= 0, got {local_evaluations!r}")
     t0 = time.perf_counter()
     emf, axes = result.emf, list(result.emf.axes)
     specs = {a: _graded(result.spec_lists[a]) for a in axes}
@@ -358,30 +390,41 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
             out += [k_phi, k_phi * wc * v[3 * i + 1], k_phi / wc * v[3 * i + 2]]
         return np.array(out)
 
-    rows, best = [], None
+    rows, best, stage = [], None, ["global"]
     bar = tqdm(desc="joint check", disable=not progress)
+    memo = {}
 
-    def cost(x):
+    def score(x):
+        """(feasible, crossover ratios, every graded margin) of the candidate ``x``, recorded once."""
         nonlocal best
+        key = np.asarray(x, float).tobytes()
+        if key in memo:
+            return memo[key]
         gains = physical(x)
         cand = {a: PIDGains(*gains[3 * i:3 * i + 3]) for i, a in enumerate(axes)}
         try:
             graded = _grade(modes.seed(emf.with_gains(cand), gains), specs)
         except (SpecEvaluationError, np.linalg.LinAlgError):
             # a response that cannot be evaluated (non-finite) ranks below every graded candidate
-            graded = {a: (np.nan, np.full(len(specs[a]), -np.inf)) for a in axes}
+            graded = {a: (np.nan, np.full(len(specs[a]), -np.inf), np.full(len(specs[a]), -np.inf)) for a in axes}
         ratios = np.array([graded[a][0] / dmo_wc[a] for a in axes])
-        margins = np.concatenate([graded[a][1] for a in axes])
-        ok = margins.size == 0 and bool(np.all(np.isfinite(ratios)))
+        unmet = np.concatenate([graded[a][1] for a in axes])
+        ok = unmet.size == 0 and bool(np.all(np.isfinite(ratios)))
         # infeasible candidates are ranked by how far they are from every boundary (graded, capped)
-        penalty = 0.0 if ok else 1.0 + float(np.sum(np.minimum(-margins, 10.0)))
+        penalty = 0.0 if ok else 1.0 + float(np.sum(np.minimum(-unmet, 10.0)))
         row = {f"{a}.{n}": float(v) for a in axes for n, v in zip(_GAIN_NAMES, cand[a].as_array())}
         row.update({f"{a}.crossover_ratio": float(r) for a, r in zip(axes, ratios)})
-        row.update({"feasible": ok, "min_ratio": float(ratios.min()) if ok else np.nan, "penalty": penalty})
+        row.update({"stage": stage[0], "feasible": ok, "min_ratio": float(ratios.min()) if ok else np.nan,
+                    "penalty": penalty})
         rows.append(row)
         bar.update(1)
         if ok and (best is None or ratios.min() > best[0]):
-            best = (float(ratios.min()), cand, ratios)
+            best = (float(ratios.min()), cand, ratios, np.asarray(x, float).copy())
+        memo[key] = (ok, ratios, np.concatenate([graded[a][2] for a in axes]), penalty)
+        return memo[key]
+
+    def cost(x):
+        ok, ratios, _, penalty = score(x)
         return -float(ratios.min()) if ok else penalty
 
     # the first generation is a Sobol cloud around the design (the design itself its first
@@ -393,6 +436,9 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
     start = np.clip(np.array(x0) + (2.0 * cloud - 1.0) * _START_SPREAD, lo, hi)
     start[0] = x0
     differential_evolution(cost, bounds, maxiter=int(maxiter), seed=seed, tol=0.0, polish=False, init=start)
+    local_best = np.nan
+    if local_evaluations:
+        local_best = _local_stage(score, best, np.array(x0), lo, hi, int(local_evaluations), stage, rows)
     bar.close()
     table = []
     for i, a in enumerate(axes):
@@ -405,4 +451,32 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
     min_ratio = best[0] if best is not None else np.nan
     dominated = bool(best is not None and min_ratio > 1.0 + tolerance)
     return JointCheckResult(pd.DataFrame(table).set_index("axis"), dominated, min_ratio, float(tolerance),
-                            pd.DataFrame(rows), time.perf_counter() - t0)
+                            pd.DataFrame(rows), time.perf_counter() - t0, local_best)
+
+
+def _local_stage(score, best, x0, lo, hi, budget, stage, rows):
+    """COBYLA from the best feasible point (else the design): maximise t, the smallest crossover
+    ratio, over (x, t) with every ratio >= t and every graded margin >= 0; returns the best
+    feasible smallest ratio among the local stage's points (NaN: none feasible)."""
+    stage[0] = "local"
+    first = len(rows)
+    start = best[3] if best is not None else x0
+    _, ratios, _, _ = score(start)
+    t0 = float(np.nanmin(ratios)) if np.all(np.isfinite(ratios)) else 0.0
+    n = start.size
+
+    def ratio_gaps(z):
+        r = score(z[:n])[1]
+        return np.where(np.isfinite(r), r, 0.0) - z[n]
+
+    def margins(z):
+        return np.clip(score(z[:n])[2], -10.0, 10.0)
+
+    cons = [NonlinearConstraint(ratio_gaps, 0.0, np.inf), NonlinearConstraint(margins, 0.0, np.inf)]
+    # t is bounded by the crossover ratios through the constraints; its box only keeps COBYLA's
+    # simplex finite
+    box = Bounds(np.append(lo, 0.0), np.append(hi, 10.0))
+    minimize(lambda z: -z[n], np.append(start, t0), method="COBYLA", bounds=box, constraints=cons,
+             options={"maxiter": budget, "rhobeg": 0.1, "tol": 1e-4})
+    local = [r["min_ratio"] for r in rows[first:] if r["feasible"]]
+    return float(max(local)) if local else np.nan

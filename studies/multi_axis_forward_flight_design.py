@@ -27,8 +27,12 @@ takes the pitch axis's margins away. So every axis is also tuned against the
 other closed loops' stability margins on the whole aircraft
 (``guard_other_axes``, :mod:`controllers.multi_axis_guard`): a loop closed around
 an unstable plant (here pitch) keeps its Level 1 margins, the others their Level 2
-ones (the next sweep re-tunes them). The global check grades each axis's own
-specs only, so it may find a higher crossover for an axis that a guard held back.
+ones (the next sweep re-tunes them). The global check grades the same guards
+(:func:`controllers.multi_axis_check.global_check` follows the design), and the
+joint check (:func:`controllers.multi_axis_joint.joint_check`, ``--joint-check``,
+on by default) searches every axis's gains at once with every loop graded on its
+own specs on the simultaneous closed loop, then runs its local constrained search
+over all twelve gains from the best point found (``--joint-local`` evaluations).
 
 Commanded responses, the ones a forward-flight explicit-model-following design uses
 within the library's four channels:
@@ -55,7 +59,7 @@ stabilise, and the speed is well above the 45 kt boundary of the forward-flight 
 
 Files under ``results/multi_axis_forward_flight_design/``: the hover study's
 ``axes.csv``, ``specs.csv``, ``limits.csv``, ``coupling.csv``, ``sweeps.csv``,
-``global_check.csv`` and ``hq_window_<axis>.png``, plus ``trim.csv`` (the trim
+``global_check.csv``, ``joint_check.csv`` and ``hq_window_<axis>.png``, plus ``trim.csv`` (the trim
 condition and the open-loop unstable poles) and ``skipped_specs.csv``.
 The actuator limits and full-stick commands of the OLOP are the hover study's
 assumptions (:data:`controllers.actuator_limits.LIMITS_ASSUMPTIONS`).
@@ -79,6 +83,7 @@ from aircraft.inflow import DynamicClimb
 from controllers import PIDGains, design_multi_axis, specs_for
 from controllers.hq.selector import flight_regime
 from controllers.multi_axis_check import global_check
+from controllers.multi_axis_joint import joint_check
 from controllers.multi_axis_design import DEFAULT_SETTINGS
 from controllers.multi_axis_report import multi_axis_summary, write_multi_axis_report
 from studies.multi_axis_hover_design import CHECK_SEED
@@ -141,6 +146,12 @@ def main(argv=None):
     parser.add_argument("--search-population", type=int, default=6, help="global search: population per gain")
     parser.add_argument("--search-seed", type=int, default=CHECK_SEED,
                         help="global search: seed (keep it different from the DMO's)")
+    parser.add_argument("--joint-check", action=argparse.BooleanOptionalAction, default=True,
+                        help="also search every axis's gains at once (joint check: is the design dominated?)")
+    parser.add_argument("--joint-iterations", type=int, default=12, help="joint check: generations")
+    parser.add_argument("--joint-population", type=int, default=2, help="joint check: population per gain")
+    parser.add_argument("--joint-local", type=int, default=200,
+                        help="joint check: evaluations of its local constrained search over every gain (0: none)")
     args = parser.parse_args(argv)
     regime = flight_regime(args.speed)
     if regime != "forward":
@@ -166,8 +177,15 @@ def main(argv=None):
     print(multi_axis_summary(result))
     check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population,
                          seed=args.search_seed, progress=True)
-    write_multi_axis_report(result, out, check=check)
+    joint = (joint_check(result, maxiter=args.joint_iterations, popsize=args.joint_population,
+                         seed=args.search_seed, local_evaluations=args.joint_local, progress=True)
+             if args.joint_check else None)
+    write_multi_axis_report(result, out, check=check, joint=joint)
     print(multi_axis_summary(result, check, design=False))
+    if joint is not None:
+        print(joint.to_pandas()[["dmo_crossover", "joint_crossover", "ratio", "dominated", "points",
+                                 "feasible_points", "local_points", "local_min_ratio", "wall_s"]]
+              .to_string(float_format="{:.3g}".format))
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 

@@ -14,7 +14,9 @@ search over the same three gains, seeded differently from every seed the DMO use
 and asks whether it can beat the DMO's crossover (a tie is within 1 %). With
 ``--joint-check`` (on by default) :func:`controllers.multi_axis_joint.joint_check` searches every
 axis's gains at once, every loop graded on its own specs, and asks whether the
-design is dominated: every axis crossing more than 1 % higher, every spec met.
+design is dominated: every axis crossing more than 1 % higher, every spec met; its
+local stage (``--joint-local``, 200 evaluations by default) then runs the joint
+constrained NLP over all twelve gains from the best point found.
 
 Files under ``results/multi_axis_hover_design/`` (coaxial) or
 ``results/multi_axis_hover_design_single_rotor/``, written by
@@ -81,6 +83,8 @@ def main(argv=None):
                         help="also search every axis's gains at once (joint check: is the design dominated?)")
     parser.add_argument("--joint-iterations", type=int, default=12, help="joint check: generations")
     parser.add_argument("--joint-population", type=int, default=2, help="joint check: population per gain")
+    parser.add_argument("--joint-local", type=int, default=200,
+                        help="joint check: evaluations of its local constrained search over every gain (0: none)")
     args = parser.parse_args(argv)
     out = Path(args.out or "results/multi_axis_hover_design" + ("" if args.aircraft == "coaxial" else
                                                                 "_single_rotor"))
@@ -92,12 +96,13 @@ def main(argv=None):
     check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population,
                          seed=args.search_seed, progress=True)
     joint = (joint_check(result, maxiter=args.joint_iterations, popsize=args.joint_population,
-                         seed=args.search_seed, progress=True) if args.joint_check else None)
+                         seed=args.search_seed, local_evaluations=args.joint_local, progress=True)
+             if args.joint_check else None)
     write_multi_axis_report(result, out, check=check, joint=joint)
     print(multi_axis_summary(result, check, design=False))
     if joint is not None:
         print(joint.to_pandas()[["dmo_crossover", "joint_crossover", "ratio", "dominated", "points",
-                                 "feasible_points", "wall_s"]].to_string(float_format="{:.3g}".format))
+                                 "feasible_points", "local_points", "local_min_ratio", "wall_s"]].to_string(float_format="{:.3g}".format))
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 

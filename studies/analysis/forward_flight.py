@@ -16,7 +16,7 @@ import pandas as pd
 from aircraft.identification.forward_flight import pitt_peters_forward
 from aircraft.identification.structures.forward import KEY_RESPONSES
 
-__all__ = ["forward_comparison_table", "forward_bode_overlay", "sign_note", "SIGN_REASONS"]
+__all__ = ["forward_comparison_table", "forward_bode_overlay", "sign_note", "SIGN_REASONS", "reproduction_table"]
 
 #: Why each entry has the sign it has (our frames: :mod:`aircraft.inflow.base`,
 #: :mod:`aircraft.inflow.pitt_peters`).
@@ -170,3 +170,61 @@ def forward_bode_overlay(model, mu, *, alpha=0.0, pairs=KEY_RESPONSES, fig=None)
                              inputs=names[0], outputs=names[1], initial={}, omega=pub.omega)
         sources.append((ref.to_frd(w), f"dissertation Eq. {'4.7' if round(mu, 6) == 0.1 else '4.8'} (printed)"))
     return bode_with_coherence(sources, list(pairs), fig=fig)
+
+
+def reproduction_table(config, models, settings, *, alpha=0.0, ct=0.0061, n_jobs=2, cache_dir="default",
+                       progress=True):
+    """The trust rule's reproduction part for each advance ratio's model: one row per mu.
+
+    Each model of ``models`` (``{mu: IdentifiedModel}`` from
+    :func:`aircraft.identification.identify_over_advance_ratio`) is identified again
+    with the same call and ``reproduce=True``: the first data set comes from the wake
+    cache and its fit is deterministic (the row's ``same_first_fit`` checks that the
+    model is the one tabulated), then the second data set, started 1e-7 R away, is run
+    and the first model's final structure refitted on it.
+
+    Parameters
+    ----------
+    config : aircraft.AircraftConfig
+        The single rotor the models were identified on.
+    models : dict
+        ``{mu: IdentifiedModel}``.
+    settings : dict
+        ``{mu: IdentificationSettings}``, as given to the sweep.
+    alpha, ct : float
+        Shaft angle [rad] and trim thrust coefficient [-] of the sweep.
+
+    Returns
+    -------
+    pandas.DataFrame
+        mu, J_ave, J_ave_refit (the first structure on the second data set),
+        same_first_fit, parameters (free), largest_shift_in_bounds (shift over the
+        first fit's bound, the largest over the parameters), parameter_of_largest,
+        reproduces (every parameter within its bound), same_structure (the whole
+        identification again keeps the same free parameters), trusted (the whole rule,
+        reproduction included) and trust_failures.
+    """
+    from aircraft.identification import identify_forward_flight, identify_inflow
+    from aircraft.identification.conditions import flight_condition
+    from aircraft.identification.structures.hover import SingleRotor3State
+
+    rows = []
+    for mu, first in sorted(models.items()):
+        kw = dict(settings=settings[mu], n_jobs=n_jobs, cache_dir=cache_dir, progress=progress, reproduce=True)
+        if mu == 0.0:
+            model = identify_inflow(config, flight_condition(config, 0.0, alpha), SingleRotor3State(), ct=float(ct),
+                                    name="single rotor mu = 0 (hover)", **kw)
+        else:
+            model = identify_forward_flight(config, mu, alpha=alpha, ct=ct, **kw)
+        rep = model.reproduction
+        t = rep.table
+        worst = t.loc[t.shift_in_bounds.astype(float).idxmax()] if len(t) else None
+        rows.append({"mu": mu, "J_ave": model.J_ave, "J_ave_refit": rep.J_ave_refit,
+                     # the cached data and a deterministic fit give the tabulated model again
+                     "same_first_fit": bool(np.isclose(model.J_ave, first.J_ave, rtol=1e-9, atol=0.0)),
+                     "parameters": len(t),
+                     "largest_shift_in_bounds": float(worst.shift_in_bounds) if worst is not None else np.nan,
+                     "parameter_of_largest": worst.parameter if worst is not None else "",
+                     "reproduces": rep.passes, "same_structure": rep.same_structure, "trusted": model.trusted,
+                     "trust_failures": " | ".join(model.trust_failures())})
+    return pd.DataFrame(rows)

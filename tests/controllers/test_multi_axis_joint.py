@@ -6,7 +6,8 @@ phi = int p, theta = int q): each axis's loop is then its own single-axis loop,
 so the best joint design is the pair of single-axis optima, which the DMO (with
 its multistart stage) reaches within its bisection tolerance. A joint search can
 therefore not beat the DMO's design by more than that tolerance, and must beat a
-design whose gains are all halved (still meeting every spec, crossing lower).
+design whose gains are all halved (still meeting every spec, crossing lower); its
+local stage (the joint NLP) must climb that halved design back to the optimum.
 """
 from dataclasses import replace
 
@@ -126,7 +127,36 @@ def test_affine_feedback_modes_equal_the_exact_interconnection():
         np.testing.assert_allclose(rebuilt(s), cl(s), rtol=1e-8, atol=1e-10)
 
 
+def test_the_local_stage_climbs_a_detuned_design_to_the_optimum_and_no_further(designed):
+    # the halved design: the joint NLP from the global stage's best point must reach (within the DMO's
+    # bisection tolerance) each decoupled axis's own optimum, which the full design is within that
+    # tolerance of, and not beyond it (no feasible gains cross higher than the optimum)
+    half = {a: PIDGains(*(0.5 * designed.emf.loops[a].gains.as_array())) for a in designed.emf.axes}
+    detuned = replace(designed, emf=designed.emf.with_gains(half))
+    check = joint_check(detuned, local_evaluations=80, **BUDGET)
+    assert 0 < check.local_evaluations <= 80
+    assert set(check.points.stage) == {"global", "local"}
+    best = {a: PIDGains(*check.axes.loc[a, ["joint_K_phi", "joint_K_Iphi", "joint_K_p"]].astype(float))
+            for a in check.axes.index}
+    met, found = _regraded(detuned, best)
+    assert met
+    for a in detuned.emf.axes:
+        full = crossover_frequency(designed.emf.axis_view(a).broken_loop())
+        assert full * (1 - DMO_TOLERANCE) <= found[a] <= full * (1 + DMO_TOLERANCE)
+    # the local stage starts from the global stage's best point: it can only add to it
+    global_best = check.points[(check.points.stage == "global") & check.points.feasible.astype(bool)].min_ratio.max()
+    assert check.local_min_ratio >= global_best - 1e-12
+    assert check.to_pandas().local_points.eq(check.local_evaluations).all()
+
+
+def test_the_local_stage_does_not_dominate_the_dmo_design(designed):
+    check = joint_check(designed, tolerance=DMO_TOLERANCE, local_evaluations=60, **BUDGET)
+    assert not check.dominated and check.local_min_ratio <= 1.0 + DMO_TOLERANCE
+
+
 @pytest.mark.parametrize("kwargs, name", [({"maxiter": 0}, "maxiter"), ({"popsize": 1.5}, "popsize"),
+                                          ({"local_evaluations": -1}, "local_evaluations"),
+                                          ({"local_evaluations": 2.0}, "local_evaluations"),
                                           ({"maxiter": True}, "maxiter"), ({"tolerance": -0.1}, "tolerance"),
                                           ({"tolerance": float("nan")}, "tolerance"), ({"decades": 0}, "decades")])
 def test_bad_arguments_are_named(designed, kwargs, name):

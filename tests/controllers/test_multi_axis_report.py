@@ -34,7 +34,7 @@ SWEEPS_COLUMNS = ["sweep", "axis", "K_phi", "K_Iphi", "K_p", "crossover", "relat
                   "crossover_boundary", "wall_s", "message"]
 JOINT_COLUMNS = ["axis", "dmo_crossover", "joint_crossover", "ratio", "dmo_feasible", "dmo_K_phi", "dmo_K_Iphi",
                  "dmo_K_p", "joint_K_phi", "joint_K_Iphi", "joint_K_p", "dominated", "min_ratio", "points",
-                 "feasible_points", "wall_s"]
+                 "feasible_points", "local_points", "local_min_ratio", "wall_s"]
 CHECK_COLUMNS = ["axis", "dmo_crossover", "search_crossover", "ratio", "beaten", "dmo_feasible", "dmo_K_phi",
                  "dmo_K_Iphi", "dmo_K_p", "search_K_phi", "search_K_Iphi", "search_K_p", "search_mimo_met",
                  "search_mimo_crossover", "points", "feasible_points", "search_wall_s", "guarded", "guard_specs",

@@ -267,8 +267,14 @@ def test_study_runs_end_to_end_on_a_tiny_wake(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
     for name in ("coefficients.csv", "advance_ratio.csv", "advance_ratio.png", "cost_table.csv", "parameters_mu0.1.csv", "verification_mu0.1.csv",
                  "bode_mu0.1.png", "kr_omega.csv", "kr_constants.csv", "kr.png", "wall_times.csv",
-                 "kr_low_band.csv"):
+                 "kr_low_band.csv", "reproduction.csv"):
         assert (out / name).is_file(), name
+    rep = pd.read_csv(out / "reproduction.csv")
+    # the model identified again from the cached first data set is the tabulated one; its refit on
+    # the second data set moves every parameter by a finite amount, judged against its bound
+    assert list(rep.mu) == [0.1] and rep.same_first_fit.all()
+    assert np.isfinite(rep.largest_shift_in_bounds).all()
+    assert (rep.reproduces == (rep.largest_shift_in_bounds <= 1.0)).all()
     coef = pd.read_csv(out / "coefficients.csv")
     assert {"ours", "cramer_rao_pct", "pitt_peters", "dissertation"} <= set(coef.columns)
     # the dissertation column is the printed Eq. 4.7, passed through (reference data)
