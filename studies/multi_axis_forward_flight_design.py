@@ -82,11 +82,9 @@ from aircraft.helicopter.hold import hold_states, sideslip_yaw_channel
 from aircraft.inflow import DynamicClimb
 from controllers import PIDGains, design_multi_axis, specs_for
 from controllers.hq.selector import flight_regime
-from controllers.multi_axis_check import global_check
-from controllers.multi_axis_joint import joint_check
 from controllers.multi_axis_design import DEFAULT_SETTINGS
-from controllers.multi_axis_report import multi_axis_summary, write_multi_axis_report
-from studies.multi_axis_hover_design import CHECK_SEED
+from controllers.multi_axis_report import multi_axis_summary
+from studies.multi_axis_hover_design import add_check_arguments, run_checks
 
 __all__ = ["SPEED", "HELD", "AXES", "START_GAINS", "SETTINGS", "forward_flight_plant", "skipped_specs", "main"]
 
@@ -142,16 +140,7 @@ def main(argv=None):
     # the guarded loop closure settles in five sweeps at this speed (the largest relative gain
     # change after three is still above the one-per-cent tolerance); six leave one in hand
     parser.add_argument("--max-sweeps", type=int, default=6, help="most sweeps of the sequential loop closure")
-    parser.add_argument("--search-iterations", type=int, default=15, help="global search: generations")
-    parser.add_argument("--search-population", type=int, default=6, help="global search: population per gain")
-    parser.add_argument("--search-seed", type=int, default=CHECK_SEED,
-                        help="global search: seed (keep it different from the DMO's)")
-    parser.add_argument("--joint-check", action=argparse.BooleanOptionalAction, default=True,
-                        help="also search every axis's gains at once (joint check: is the design dominated?)")
-    parser.add_argument("--joint-iterations", type=int, default=12, help="joint check: generations")
-    parser.add_argument("--joint-population", type=int, default=2, help="joint check: population per gain")
-    parser.add_argument("--joint-local", type=int, default=200,
-                        help="joint check: evaluations of its local constrained search over every gain (0: none)")
+    add_check_arguments(parser)
     args = parser.parse_args(argv)
     regime = flight_regime(args.speed)
     if regime != "forward":
@@ -175,17 +164,7 @@ def main(argv=None):
           f"{', '.join(f'{p:.3g}' for p in unstable)}")
     print("skipped (not found printed):", ", ".join(sorted(set(skipped.spec))) if len(skipped) else "none")
     print(multi_axis_summary(result))
-    check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population,
-                         seed=args.search_seed, progress=True)
-    joint = (joint_check(result, maxiter=args.joint_iterations, popsize=args.joint_population,
-                         seed=args.search_seed, local_evaluations=args.joint_local, progress=True)
-             if args.joint_check else None)
-    write_multi_axis_report(result, out, check=check, joint=joint)
-    print(multi_axis_summary(result, check, design=False))
-    if joint is not None:
-        print(joint.to_pandas()[["dmo_crossover", "joint_crossover", "ratio", "dominated", "points",
-                                 "feasible_points", "local_points", "local_min_ratio", "wall_s"]]
-              .to_string(float_format="{:.3g}".format))
+    run_checks(result, args, out)
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 

@@ -52,7 +52,7 @@ from controllers.multi_axis_check import global_check
 from controllers.multi_axis_joint import joint_check
 from controllers.multi_axis_report import multi_axis_summary, write_multi_axis_report
 
-__all__ = ["AIRCRAFT", "CHECK_SEED", "hover_plant", "main"]
+__all__ = ["AIRCRAFT", "CHECK_SEED", "hover_plant", "add_check_arguments", "run_checks", "main"]
 
 
 #: aircraft -> (configuration, inflow model) of the hover plant
@@ -67,14 +67,9 @@ def hover_plant(aircraft="coaxial"):
     return hold_states(linearize(trim(Helicopter(config(), inflow()), TrimCondition(speed=0.0))), ["u", "v"])
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
-                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    parser.add_argument("--aircraft", choices=sorted(AIRCRAFT), default="coaxial", help="aircraft designed")
-    parser.add_argument("--out", default=None,
-                        help="results folder (default results/multi_axis_hover_design, with _single_rotor "
-                             "appended for the single rotor)")
-    parser.add_argument("--max-sweeps", type=int, default=3, help="most sweeps of the sequential loop closure")
+def add_check_arguments(parser):
+    """The options of the checks every multi-axis study runs: the per-axis global search and the
+    joint check (global and local stages)."""
     parser.add_argument("--search-iterations", type=int, default=15, help="global search: generations")
     parser.add_argument("--search-population", type=int, default=6, help="global search: population per gain")
     parser.add_argument("--search-seed", type=int, default=CHECK_SEED,
@@ -85,14 +80,11 @@ def main(argv=None):
     parser.add_argument("--joint-population", type=int, default=2, help="joint check: population per gain")
     parser.add_argument("--joint-local", type=int, default=200,
                         help="joint check: evaluations of its local constrained search over every gain (0: none)")
-    args = parser.parse_args(argv)
-    out = Path(args.out or "results/multi_axis_hover_design" + ("" if args.aircraft == "coaxial" else
-                                                                "_single_rotor"))
-    out.mkdir(parents=True, exist_ok=True)
-    pd.set_option("display.width", 200)
-    t0 = time.perf_counter()
-    result = design_multi_axis(hover_plant(args.aircraft), max_sweeps=args.max_sweeps, limits="hover", progress=True)
-    print(multi_axis_summary(result))
+
+
+def run_checks(result, args, out):
+    """Run the global and (with ``--joint-check``) joint checks on ``result``, write the report
+    to ``out`` and print both; return ``(check, joint or None)``."""
     check = global_check(result, maxiter=args.search_iterations, popsize=args.search_population,
                          seed=args.search_seed, progress=True)
     joint = (joint_check(result, maxiter=args.joint_iterations, popsize=args.joint_population,
@@ -102,7 +94,29 @@ def main(argv=None):
     print(multi_axis_summary(result, check, design=False))
     if joint is not None:
         print(joint.to_pandas()[["dmo_crossover", "joint_crossover", "ratio", "dominated", "points",
-                                 "feasible_points", "local_points", "local_min_ratio", "wall_s"]].to_string(float_format="{:.3g}".format))
+                                 "feasible_points", "local_points", "local_min_ratio", "wall_s"]]
+              .to_string(float_format="{:.3g}".format))
+    return check, joint
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser.add_argument("--aircraft", choices=sorted(AIRCRAFT), default="coaxial", help="aircraft designed")
+    parser.add_argument("--out", default=None,
+                        help="results folder (default results/multi_axis_hover_design, with _single_rotor "
+                             "appended for the single rotor)")
+    parser.add_argument("--max-sweeps", type=int, default=3, help="most sweeps of the sequential loop closure")
+    add_check_arguments(parser)
+    args = parser.parse_args(argv)
+    out = Path(args.out or "results/multi_axis_hover_design" + ("" if args.aircraft == "coaxial" else
+                                                                "_single_rotor"))
+    out.mkdir(parents=True, exist_ok=True)
+    pd.set_option("display.width", 200)
+    t0 = time.perf_counter()
+    result = design_multi_axis(hover_plant(args.aircraft), max_sweeps=args.max_sweeps, limits="hover", progress=True)
+    print(multi_axis_summary(result))
+    run_checks(result, args, out)
     print(f"total {time.perf_counter() - t0:.0f} s")
     return out
 
