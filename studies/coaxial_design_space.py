@@ -16,15 +16,18 @@ revolutions, 6 elements). Writes to ``results/coaxial_design_space/``:
   load it with ``ScheduledInflow.from_file(path, spacing, ct)``) over the trusted points
   only (the largest all-trusted sub-grid, ``schedule(require_trusted=True)``; ``--all-points``:
   over every point), not written when fewer than two trusted points remain;
-* ``timing.csv``         wall time per point and in all, and whether the wake cache was on.
+* ``timing.csv``         wall time per point and in all, and whether the wake cache was on;
+* ``reproduction.csv``   the trust rule's reproduction part at each trusted point
+  (:func:`studies.analysis.design_space.reproduction_table`).
 
 Run: ``python -m studies.coaxial_design_space`` (4 spacings x 2 thrusts, 45 s sweeps from
 0.7 rad/s, fit 1-12 rad/s (``--fit-max``: see :data:`FIT_MAX`); about 3 min per point on 2 idle
 cores the first time, the fits only once cached);
 ``--structure`` picks the fitted structure (default the free-mass ``coaxial_6state``; or the
 shipped model's ``coaxial_6state_axisymmetric_pp_collective_mass``, the same six sweeps).
-Trust is judged without the reproduction part (no second data set is run: it would double
-the wake runs), so ``trusted`` reads "trusted, reproduction not checked".
+``trusted`` in the tables is judged without the reproduction part; that part runs at the
+trusted points only (``--reproduce``, on by default: a second data set per trusted point,
+started 1e-7 R away) and is written to ``reproduction.csv``.
 ``--no-cache`` recomputes the wake runs (the committed results: their timing is the data
 sets'); ``--small``: a tiny wake on 2 spacings x 1 thrust, for the tests.
 """
@@ -40,6 +43,7 @@ import pandas as pd
 from aircraft.identification import IdentificationSettings, identify_design_space
 from aircraft.identification.design_space import DesignSpaceError, SPACINGS, THRUSTS
 from aircraft.wake import WakeSettings
+from studies.analysis.design_space import reproduction_table
 
 COARSE = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 # --small: the tiny wake of tests/aircraft/identification/test_identification_pipeline.py (20 deg, 1.5 revs, 5 elements)
@@ -69,11 +73,13 @@ def settings_for(small=False, sweep_s=45.0, w_min=0.7, fit_max=FIT_MAX):
 
 
 def run_study(spacings, cts, settings, *, structure=STRUCTURE, out_dir="results/coaxial_design_space", n_jobs=2,
-              scheduler=None, verbose=True, cache=True, trusted_only=True):
+              scheduler=None, verbose=True, cache=True, trusted_only=True, reproduce=True):
     """Identify ``structure`` over the grid, write the tables, figure and schedule; return the
     DesignSpaceResult. ``cache=False`` recomputes every wake run (and stores none), so
     ``timing.csv`` holds the data sets' wall times rather than cache reads. ``trusted_only``:
-    the schedule's nodes are the trusted points only (``schedule(require_trusted=True)``)."""
+    the schedule's nodes are the trusted points only (``schedule(require_trusted=True)``).
+    ``reproduce``: run the trust rule's reproduction part at every trusted point
+    (``reproduction.csv``; a second wake data set each)."""
     t0 = time.perf_counter()
     result = identify_design_space(spacings, cts, structure=structure, settings=settings, n_jobs=n_jobs,
                                    scheduler=scheduler, progress=verbose, cache_dir="default" if cache else None)
@@ -90,6 +96,7 @@ def run_study(spacings, cts, settings, *, structure=STRUCTURE, out_dir="results/
                            for p in result.points]
                           + [{"spacing": None, "ct": None, "wall_s": round(wall, 1), "wake_cache": cache_state}])
     timing.to_csv(out / "timing.csv", index=False)
+    nodes = []
     try:
         sched = result.schedule(require_trusted=trusted_only)
     except DesignSpaceError as err:      # too few trusted (or failed) points: say so, write no schedule
@@ -98,9 +105,19 @@ def run_study(spacings, cts, settings, *, structure=STRUCTURE, out_dir="results/
         (out / "schedule.json").unlink(missing_ok=True)
     else:
         sched.save(out / "schedule.json")
+        nodes = [(s, c) for s in sched.spacings for c in sched.cts]
         which = "trusted points only" if trusted_only else "every point"
         schedule_note = (f"schedule ({which}: h/R {', '.join(f'{v:g}' for v in sched.spacings)} x "
                          f"C_T {', '.join(f'{v:g}' for v in sched.cts)}) in {out / 'schedule.json'}")
+    reproduction = None
+    if reproduce:
+        reproduction = reproduction_table(result, settings, n_jobs=n_jobs, cache_dir="default" if cache else None,
+                                          progress=verbose)
+        reproduction.to_csv(out / "reproduction.csv", index=False)
+        done = {(r.spacing, r.ct): bool(r.reproduces) for r in reproduction.itertuples()}
+        if nodes and not all(done.get(n, False) for n in nodes):
+            # trusted_only=False puts untrusted points in, whose reproduction is not run
+            schedule_note += " -- a node of it is not shown to reproduce (reproduction.csv)"
     if verbose:
         fmt = lambda v: f"{v:.4g}"   # noqa: E731
         ws = settings.wake_settings
@@ -113,6 +130,9 @@ def run_study(spacings, cts, settings, *, structure=STRUCTURE, out_dir="results/
             print(f"FAILED h/R {p.spacing:g}, C_T {p.ct:g}: {p.error}")
         print(f"trusted at {int(summary.trusted.sum())} of {len(summary)} points (trust_check, reproduction "
               "not checked)")
+        if reproduction is not None:
+            print("reproduction on a second wake data set at the trusted points (the trust rule's last part):")
+            print(reproduction.drop(columns="trust_failures").to_string(index=False, float_format=fmt))
         print(f"{schedule_note}; tables and figure in {out}/  (wall {wall:.0f} s, wake cache {cache_state})")
     return result
 
@@ -137,6 +157,9 @@ def main(argv=None):
     parser.add_argument("--no-cache", action="store_true",
                         help="recompute every wake run (the committed timing is the data sets', not cache reads)")
     parser.add_argument("--structure", choices=STRUCTURES, default=STRUCTURE, help="structure fitted at every point")
+    parser.add_argument("--reproduce", action=argparse.BooleanOptionalAction, default=True,
+                        help="run the trust rule's reproduction part at every trusted point (a second wake data set "
+                             "each)")
     parser.add_argument("--all-points", action="store_true",
                         help="schedule over every point, trusted or not (default: trusted points only)")
     parser.add_argument("--out", default="results/coaxial_design_space")
@@ -147,7 +170,7 @@ def main(argv=None):
         cts = (0.0096,) if args.cts == THRUSTS else args.cts
     run_study(spacings, cts, settings_for(args.small, args.sweep_s, args.w_min, args.fit_max), structure=args.structure,
               out_dir=args.out, n_jobs=args.n_jobs, scheduler=args.scheduler, cache=not args.no_cache,
-              trusted_only=not args.all_points)
+              trusted_only=not args.all_points, reproduce=args.reproduce)
 
 
 if __name__ == "__main__":

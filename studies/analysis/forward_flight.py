@@ -208,6 +208,8 @@ def reproduction_table(config, models, settings, *, alpha=0.0, ct=0.0061, n_jobs
     from aircraft.identification.conditions import flight_condition
     from aircraft.identification.structures.hover import SingleRotor3State
 
+    from .reproduction import reproduction_row
+
     rows = []
     for mu, first in sorted(models.items()):
         kw = dict(settings=settings[mu], n_jobs=n_jobs, cache_dir=cache_dir, progress=progress, reproduce=True)
@@ -216,15 +218,5 @@ def reproduction_table(config, models, settings, *, alpha=0.0, ct=0.0061, n_jobs
                                     name="single rotor mu = 0 (hover)", **kw)
         else:
             model = identify_forward_flight(config, mu, alpha=alpha, ct=ct, **kw)
-        rep = model.reproduction
-        t = rep.table
-        worst = t.loc[t.shift_in_bounds.astype(float).idxmax()] if len(t) else None
-        rows.append({"mu": mu, "J_ave": model.J_ave, "J_ave_refit": rep.J_ave_refit,
-                     # the cached data and a deterministic fit give the tabulated model again
-                     "same_first_fit": bool(np.isclose(model.J_ave, first.J_ave, rtol=1e-9, atol=0.0)),
-                     "parameters": len(t),
-                     "largest_shift_in_bounds": float(worst.shift_in_bounds) if worst is not None else np.nan,
-                     "parameter_of_largest": worst.parameter if worst is not None else "",
-                     "reproduces": rep.passes, "same_structure": rep.same_structure, "trusted": model.trusted,
-                     "trust_failures": " | ".join(model.trust_failures())})
+        rows.append({"mu": mu, **reproduction_row(model, first)})
     return pd.DataFrame(rows)

@@ -25,8 +25,11 @@ def test_design_space_study_writes_table_figure_and_schedule(tmp_path):
                            "--out", str(tmp_path)],
                           cwd=ROOT, env=env, capture_output=True, text=True, timeout=1800)
     assert done.returncode == 0, done.stderr[-3000:]
-    for name in ("design_space.csv", "summary.csv", "coefficients.png", "timing.csv"):
+    for name in ("design_space.csv", "summary.csv", "coefficients.png", "timing.csv", "reproduction.csv"):
         assert (tmp_path / name).stat().st_size > 0
+    # the reproduction part runs at the trusted points only (none may be trusted on the tiny wake)
+    rep = pd.read_csv(tmp_path / "reproduction.csv")
+    assert {"spacing", "ct", "largest_shift_in_bounds", "reproduces", "trusted"} <= set(rep.columns)
     table = pd.read_csv(tmp_path / "design_space.csv")
     assert sorted(set(table.spacing)) == [0.14] and set(table.ct) == {0.0096}
     summary = pd.read_csv(tmp_path / "summary.csv")
