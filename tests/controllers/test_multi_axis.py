@@ -15,19 +15,12 @@ from controllers.multi_axis import AXIS_CHANNELS, AxisLoop, MultiAxisEMF, RateCo
 from controllers.multi_axis_design import AxisEMFDesign, axis_specs, design_multi_axis
 from controllers.plants import first_order_actuator
 
+from tests.controllers._plants import roll_pitch
+
 W = np.geomspace(0.1, 30.0, 25)
 #: small DMO settings: the tests check the plumbing, not the optimiser's resolution
 FAST = DMOSettings(global_samples=8, max_steps=6, tolerance=0.05, polish_evaluations=0, growth=2.0)
 START = {"roll": 2.5, "pitch": 2.5}
-
-
-def roll_pitch(c=0.0):
-    A = np.zeros((4, 4))
-    A[0, 0], A[1, 0], A[2, 2], A[3, 2] = -1.5, 1.0, -1.0, 1.0
-    A[0, 2] = A[2, 0] = c
-    B = np.zeros((4, 2))
-    B[0, 0], B[2, 1] = 5.0, -4.0
-    return control.ss(A, B, np.eye(4), 0, inputs=["delta_lat", "delta_lon"], outputs=["p", "phi", "q", "theta"])
 
 
 def four_axis(c=0.2, yaw_col=0.4):

@@ -1,6 +1,6 @@
 """The joint check of a multi-axis design: every axis's gains searched at once, every loop graded.
 
-The plant is the hand-built roll/pitch pair of ``test_multi_axis.py`` without
+The plant is the hand-built roll/pitch pair of ``_plants.py`` without
 cross-coupling (roll p/delta_lat = 5/(s+1.5), pitch q/delta_lon = -4/(s+1),
 phi = int p, theta = int q): each axis's loop is then its own single-axis loop,
 so the best joint design is the pair of single-axis optima, which the DMO (with
@@ -23,6 +23,8 @@ from controllers.multi_axis_design import AxisEMFDesign
 from controllers.multi_axis_joint import JointCheckResult, _FeedbackModes, joint_check
 from controllers.plants import first_order_actuator
 
+from tests.controllers._plants import roll_pitch
+
 #: the DMO's bisection tolerance here: the design's crossovers are within this fraction of each axis's optimum
 DMO_TOLERANCE = 0.05
 #: small DMO settings with the multistart stage: without it the DMO stops short of the pitch optimum here
@@ -30,15 +32,6 @@ FAST = DMOSettings(global_samples=8, max_steps=8, tolerance=DMO_TOLERANCE, polis
                    multistart=16)
 #: a small search: the tests check the verdicts, not the search's resolution
 BUDGET = {"maxiter": 2, "popsize": 2}
-
-
-def roll_pitch(c=0.0):
-    A = np.zeros((4, 4))
-    A[0, 0], A[1, 0], A[2, 2], A[3, 2] = -1.5, 1.0, -1.0, 1.0
-    A[0, 2] = A[2, 0] = c
-    B = np.zeros((4, 2))
-    B[0, 0], B[2, 1] = 5.0, -4.0
-    return control.ss(A, B, np.eye(4), 0, inputs=["delta_lat", "delta_lon"], outputs=["p", "phi", "q", "theta"])
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
 """The report of a multi-axis design: files, columns and contents on a small roll/pitch design.
 
-The plant is the hand-built roll/pitch pair of ``test_multi_axis.py`` (roll
+The plant is the hand-built roll/pitch pair of ``_plants.py`` (roll
 p/delta_lat = 5/(s+1.5), pitch q/delta_lon = -4/(s+1), phi = int p, theta = int q,
 symmetric rate cross-coupling 0.3). One DMO sweep with small settings and a small
 global check: the tests check what is written, not the optimiser.
@@ -8,7 +8,6 @@ global check: the tests check what is written, not the optimiser.
 import math
 from dataclasses import replace
 
-import control
 import numpy as np
 import pandas as pd
 import pytest
@@ -18,6 +17,7 @@ from controllers.actuator_limits import LIMITS_ASSUMPTIONS
 from controllers.multi_axis_check import global_check
 from controllers.multi_axis_report import (limits_assumptions_table, limits_table, multi_axis_summary,
                                            multi_axis_tables, write_multi_axis_report)
+from tests.controllers._plants import roll_pitch
 
 #: small DMO settings (two boundary steps from the starting gains, no global stage): what is written is
 #: under test, not the optimiser
@@ -41,18 +41,9 @@ CHECK_COLUMNS = ["axis", "dmo_crossover", "search_crossover", "ratio", "beaten",
                  "dmo_guards_met"]
 
 
-def roll_pitch(c=0.3):
-    A = np.zeros((4, 4))
-    A[0, 0], A[1, 0], A[2, 2], A[3, 2] = -1.5, 1.0, -1.0, 1.0
-    A[0, 2] = A[2, 0] = c
-    B = np.zeros((4, 2))
-    B[0, 0], B[2, 1] = 5.0, -4.0
-    return control.ss(A, B, np.eye(4), 0, inputs=["delta_lat", "delta_lon"], outputs=["p", "phi", "q", "theta"])
-
-
 @pytest.fixture(scope="module")
 def designed():
-    res = design_multi_axis(roll_pitch(), axes=["roll", "pitch"], settings=FAST, max_sweeps=1, progress=False,
+    res = design_multi_axis(roll_pitch(0.3), axes=["roll", "pitch"], settings=FAST, max_sweeps=1, progress=False,
                             crossover_start={"roll": 2.5, "pitch": 2.5})
     check = global_check(res, maxiter=2, popsize=2, seed=7)
     return res, check
