@@ -37,9 +37,9 @@ import control
 import numpy as np
 
 from .emf import CommandModel, FrequencyFunction, PIDGains, _eval
+from .multi_axis_view import AxisView
 
-__all__ = ["AxisChannel", "AXIS_CHANNELS", "RateCommandModel", "AxisLoop", "MultiAxisEMF", "AxisView",
-           "SignalNameError"]
+__all__ = ["AxisChannel", "AXIS_CHANNELS", "RateCommandModel", "AxisLoop", "MultiAxisEMF", "SignalNameError"]
 
 
 class SignalNameError(ValueError):
@@ -273,7 +273,69 @@ class MultiAxisEMF:
         """Copy with new gains for some axes (dict axis -> PIDGains); fits and hardware kept."""
         loops = {a: (AxisLoop(gains[a], l.command_model, l.inverse_plant, l.equivalent_delay, l.actuator,
                               l.sensor_delay) if a in gains else l) for a, l in self.loops.items()}
-        return MultiAxisEMF(self.plant, loops, self.channels)
+        new = MultiAxisEMF(self.plant, loops, self.channels)
+        # the pilot-path blocks hold no gain: their poles carry over
+        new._cache.update({k: v for k, v in self._cache.items() if k[0] == "pilot poles"})
+        return new
+
+    def with_interconnections(self, feedback_poles=None, closed_loop=None, pade_order=3):
+        """Copy that uses the given feedback poles and closed loop instead of building them.
+
+        For a caller that forms them faster for these gains than
+        :func:`control.interconnect` does (e.g. the joint check's state matrices,
+        affine in the gains). What is given is used as is by :meth:`feedback_poles`,
+        :meth:`closed_loop_poles`, :meth:`closed_loop` and every spec that reads
+        them; what is not given is built on demand as usual.
+
+        Parameters
+        ----------
+        feedback_poles : array_like, optional
+            What :meth:`feedback_poles` returns at ``pade_order`` [rad/s].
+        closed_loop : control.StateSpace, optional
+            What :meth:`closed_loop` returns at ``pade_order``: its signal names must be
+            the same.
+        pade_order : int, optional
+            Padé order they were formed with (default 3).
+
+        Returns
+        -------
+        MultiAxisEMF
+
+        Raises
+        ------
+        ValueError
+            Poles not finite, or a closed loop whose inputs or outputs differ from
+            :meth:`closed_loop`'s.
+
+        Examples
+        --------
+        >>> import control
+        >>> plant = control.ss([[-1.0, 0], [1.0, 0]], [[2.0], [0]], [[1.0, 0], [0, 1.0]], 0,
+        ...                    inputs=["delta_lat"], outputs=["p", "phi"])
+        >>> loop = AxisLoop(PIDGains(1.0, 0.2, 0.3), inverse_plant=control.tf([2.0], [1.0, 1.0]))
+        >>> emf = MultiAxisEMF(plant, {"roll": loop})
+        >>> same = emf.with_interconnections(feedback_poles=emf.feedback_poles(), closed_loop=emf.closed_loop())
+        >>> bool(np.all(same.closed_loop_poles() == emf.closed_loop_poles()))
+        True
+        """
+        new = self.with_gains({})
+        if feedback_poles is not None:
+            poles = np.asarray(feedback_poles, dtype=complex).ravel()
+            if not np.all(np.isfinite(poles)):
+                raise ValueError("with_interconnections: feedback_poles must be finite")
+            new._cache[("feedback poles", pade_order)] = poles
+        if closed_loop is not None:
+            inp, out = self._closed_loop_names()
+            if (not isinstance(closed_loop, control.StateSpace) or list(closed_loop.input_labels) != inp
+                    or list(closed_loop.output_labels) != out):
+                raise ValueError(f"with_interconnections: closed_loop must be a StateSpace with inputs {inp} "
+                                 f"and outputs {out}")
+            new._cache[("cl", pade_order)] = closed_loop
+        return new
+
+    def has_closed_loop(self, pade_order=3):
+        """Whether :meth:`closed_loop` has been built (or given) at ``pade_order``."""
+        return ("cl", pade_order) in self._cache
 
     # -- exact frequency responses --------------------------------------------
     def _rows(self):
@@ -299,10 +361,7 @@ class MultiAxisEMF:
         for k, (att, rate, sign) in enumerate(self._rows()):
             Y[:, 2 * k + 1] = sign * H[:, rate]
             Y[:, 2 * k] = sign * (H[:, rate] / s[:, None] if att is None else H[:, att])
-        if len(self._cache) > 8:
-            self._cache.clear()
-        self._cache[key] = Y
-        return Y
+        return self._remember_response(key, Y)
 
     def _parts(self, s):
         s = np.atleast_1d(np.asarray(s, dtype=complex))
@@ -325,10 +384,16 @@ class MultiAxisEMF:
         tau = np.array([self.loops[a].equivalent_delay for a in self.axes])
         pilot = s[:, None] * cm * (pinv + np.exp(-s[:, None] * tau) * c)     # pilot_j -> mixer_j (open loop)
         out = {"s": s, "Y": Y, "act": act, "sens": sens, "c": c, "L": L, "M": M, "pilot": pilot, "cm": cm}
-        if len(self._cache) > 8:
-            self._cache.clear()
-        self._cache[key] = out
-        return out
+        return self._remember_response(key, out)
+
+    def _remember_response(self, key, value):
+        # frequency grids come and go; the gain-specific interconnections stay
+        grids = [k for k in self._cache if k[0] in ("Y", "parts")]
+        if len(grids) > 8:
+            for k in grids:
+                del self._cache[k]
+        self._cache[key] = value
+        return value
 
     def _index(self, axis):
         if axis not in self.axes:
@@ -469,12 +534,15 @@ class MultiAxisEMF:
         """
         key = ("cl", pade_order)
         if key not in self._cache:
-            inp = [f"{x}_{a}" for a in self.axes for x in ("stick_s", "att_d")]
-            out = [f"{x}_{a}" for a in self.axes for x in ("rate", "att", "delta_mx", "delta_fb", "att_cm")]
+            inp, out = self._closed_loop_names()
             self._cache[key] = control.interconnect(self._blocks("closed", pade_order=pade_order), inplist=inp,
                                                     outlist=out, inputs=inp, outputs=out, check_unused=False,
                                                     name="multi-axis EMF closed loop")
         return self._cache[key]
+
+    def _closed_loop_names(self):
+        return ([f"{x}_{a}" for a in self.axes for x in ("stick_s", "att_d")],
+                [f"{x}_{a}" for a in self.axes for x in ("rate", "att", "delta_mx", "delta_fb", "att_cm")])
 
     def effective_plant(self, axis, pade_order=3):
         """Signed rate of ``axis`` per its stick (actuator output) with every other loop closed.
@@ -526,9 +594,12 @@ class MultiAxisEMF:
         :class:`RateCommandModel`) are left out: a held control commands a
         steady heading or height rate by definition, not an unstable mode.
         """
-        key = ("poles", pade_order)
+        return np.concatenate([self.feedback_poles(pade_order), self._pilot_poles(pade_order)])
+
+    def _pilot_poles(self, pade_order):
+        key = ("pilot poles", pade_order)
         if key not in self._cache:
-            poles = [self.feedback_poles(pade_order)]
+            poles = [np.zeros(0, complex)]
             for a in self.axes:
                 for b in self._pilot_blocks(a, pade_order):
                     if b.nstates:
@@ -539,61 +610,3 @@ class MultiAxisEMF:
             self._cache[key] = np.concatenate(poles)
         return self._cache[key]
 
-
-class AxisView:
-    """One axis of a :class:`MultiAxisEMF` with every loop closed, shaped like a single-axis design.
-
-    Gives the methods the specs read (:func:`controllers.evaluate_specs`,
-    :func:`controllers.hq_window`): ``broken_loop`` (loop broken at this axis's
-    actuator, the other loops closed), ``disturbance_response``,
-    ``attitude_response``, ``mixer_response_pilot``/``_disturbance``,
-    ``commanded_attitude``, ``closed_loop_poles`` (the whole closed loop's) and
-    ``rate_response_system`` (Padé state space).
-
-    Parameters
-    ----------
-    emf : MultiAxisEMF
-    axis : str
-        One of ``emf.axes``.
-    """
-
-    def __init__(self, emf, axis):
-        self.emf, self.axis = emf, axis
-        self.gains = emf.loops[axis].gains
-        self.equivalent_delay = emf.loops[axis].equivalent_delay
-
-    def broken_loop(self):
-        return self.emf.broken_loop(self.axis)
-
-    def disturbance_response(self):
-        return self.emf.disturbance_response(self.axis)
-
-    def attitude_response(self):
-        return self.emf.command_response(self.axis, self.axis, "attitude")
-
-    def roll_rate_response(self):
-        return self.emf.command_response(self.axis, self.axis, "rate")
-
-    def mixer_response_pilot(self):
-        return self.emf.mixer_response(self.axis, self.axis)
-
-    def mixer_response_disturbance(self):
-        return FrequencyFunction(self.emf._disturbance(self.axis, "mixer"), f"delta_mx_{self.axis}/att_d")
-
-    def commanded_attitude(self):
-        lp = self.emf.loops[self.axis]
-        return FrequencyFunction(lambda s: _eval(lp.command_model.tf(), s) * np.exp(-s * lp.equivalent_delay),
-                                 "att_cm/delta")
-
-    def closed_loop_poles(self, pade_order=3):
-        return self.emf.closed_loop_poles(pade_order)
-
-    def feedback_poles(self, pade_order=3):
-        return self.emf.feedback_poles(pade_order)
-
-    def rate_response_system(self, pade_order=3):
-        cl = self.emf.closed_loop(pade_order)
-        return cl[cl.output_labels.index(f"rate_{self.axis}"), cl.input_labels.index(f"stick_s_{self.axis}")]
-
-    def broken_loop_statespace(self, pade_order=3):
-        return self.emf.broken_loop_statespace(self.axis, pade_order)

@@ -42,7 +42,7 @@ from tqdm.auto import tqdm
 
 from . import metrics as m
 from .emf import PIDGains
-from .multi_axis_design import MultiAxisResult
+from .multi_axis_result import MultiAxisResult
 from .nlp import _gain_scale
 from .smooth import CrossoverMinimum, spec_with_constraint
 from .specs import SpecEvaluationError, evaluate_specs
@@ -230,9 +230,9 @@ class _FeedbackModes:
 
     Building the interconnections (:meth:`MultiAxisEMF.feedback_poles` and
     :meth:`MultiAxisEMF.closed_loop`) dominates a candidate's grading; here they are
-    built 1 + 3 n times (:class:`_AffineSystem`) and each candidate's are put where
-    :class:`MultiAxisEMF` keeps them (default Padé order). The pilot-path blocks'
-    poles do not depend on the gains. Where an affine form does not reproduce the
+    built 1 + 3 n times (:class:`_AffineSystem`) and each candidate's are given to
+    :meth:`MultiAxisEMF.with_interconnections` (default Padé order). The pilot-path
+    blocks' poles do not depend on the gains. Where an affine form does not reproduce the
     exact interconnection (an algebraic loop), that part is graded by the exact path.
     """
 
@@ -245,9 +245,9 @@ class _FeedbackModes:
         # the whole closed loop only where the specs read it (e.g. a heave height-response fit):
         # grading the design left it in the design's cache then
         self.closed = (_AffineSystem(lambda g: emf.with_gains(self._gains(g)).closed_loop(), n)
-                       if ("cl", 3) in emf._cache else None)
+                       if emf.has_closed_loop() else None)
         self.ok = self.feedback.ok
-        self.pilot = emf.closed_loop_poles()[emf.feedback_poles().size:]
+        emf.closed_loop_poles()   # the pilot-path poles hold no gain: every candidate's copy carries them
 
     def _gains(self, g):
         return {a: PIDGains(*g[3 * i:3 * i + 3]) for i, a in enumerate(self.axes)}
@@ -257,15 +257,11 @@ class _FeedbackModes:
         return self.feedback.matrices(g)[0]
 
     def seed(self, emf, g):
-        """Put the candidate's poles and closed loop where ``emf`` keeps them."""
-        if self.feedback.ok:
-            fb = np.linalg.eigvals(self.matrix(g))
-            emf._cache[("feedback poles", 3)] = fb
-            emf._cache[("poles", 3)] = np.concatenate([fb, self.pilot])
-        if self.closed is not None and self.closed.ok:
-            emf._cache[("cl", 3)] = control.ss(*self.closed.matrices(g), inputs=self.closed.inputs,
-                                               outputs=self.closed.outputs, name="multi-axis EMF closed loop")
-        return emf
+        """``emf`` (at the gains ``g``) with the candidate's feedback poles and closed loop given."""
+        fb = np.linalg.eigvals(self.matrix(g)) if self.feedback.ok else None
+        cl = (control.ss(*self.closed.matrices(g), inputs=self.closed.inputs, outputs=self.closed.outputs,
+                         name="multi-axis EMF closed loop") if self.closed is not None and self.closed.ok else None)
+        return emf.with_interconnections(feedback_poles=fb, closed_loop=cl)
 
 
 def _check_int(name, v):

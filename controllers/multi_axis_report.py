@@ -1,7 +1,7 @@
 """The report of a multi-axis design: its tables, a printable summary, and the files that hold them.
 
 :func:`multi_axis_tables` gathers every table of a
-:class:`~controllers.multi_axis_design.MultiAxisResult` (and, when given, of its
+:class:`~controllers.multi_axis_result.MultiAxisResult` (and, when given, of its
 :func:`~controllers.multi_axis_check.global_check` and
 :func:`~controllers.multi_axis_joint.joint_check`) under one name each;
 :func:`write_multi_axis_report` writes them as CSV files, with one HQ window per
@@ -11,16 +11,16 @@ is written with that index as its first column; the others without an index.
 
 Files written (``<name>.csv`` per table of :func:`multi_axis_tables`):
 
-* ``axes.csv``: :meth:`MultiAxisResult.to_pandas` (gains, crossover, DRB, DRP,
+* ``axes.csv``: :meth:`~controllers.multi_axis_result.MultiAxisResult.to_pandas` (gains, crossover, DRB, DRP,
   GM/PM, OLOP margin and onset, specs met, unmet and limiting specs);
 * ``specs.csv``: every spec of every axis on the simultaneous closed loop;
 * ``limits.csv``: :func:`limits_table`;
 * ``limits_assumptions.csv``: :data:`~controllers.actuator_limits.LIMITS_ASSUMPTIONS`;
-* ``coupling.csv``: :meth:`MultiAxisResult.coupling`;
-* ``sweeps.csv``: :attr:`MultiAxisResult.history`;
+* ``coupling.csv``: :meth:`~controllers.multi_axis_result.MultiAxisResult.coupling`;
+* ``sweeps.csv``: :attr:`~controllers.multi_axis_result.MultiAxisResult.history`;
 * ``global_check.csv``: the ``check`` table, when one is given;
 * ``joint_check.csv``: :meth:`JointCheckResult.to_pandas` of ``joint``, when one is given;
-* ``hq_window_<axis>.png``: :meth:`MultiAxisResult.plot`, when ``figures`` is true.
+* ``hq_window_<axis>.png``: :meth:`~controllers.multi_axis_result.MultiAxisResult.plot`, when ``figures`` is true.
 """
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ from pathlib import Path
 import pandas as pd
 
 from .actuator_limits import LIMITS_ASSUMPTIONS
-from .multi_axis_design import MultiAxisResult
+from .multi_axis_result import MultiAxisResult
 from .multi_axis_joint import JointCheckResult
 
 __all__ = ["limits_table", "limits_assumptions_table", "multi_axis_tables", "multi_axis_summary",
@@ -263,7 +263,7 @@ def write_multi_axis_report(result, folder, *, check=None, joint=None, figures=T
         From :func:`controllers.multi_axis_joint.joint_check` on ``result``; written as
         ``joint_check.csv`` when given.
     figures : bool
-        Also save ``hq_window_<axis>.png`` per axis (:meth:`MultiAxisResult.plot`).
+        Also save ``hq_window_<axis>.png`` per axis (:meth:`~controllers.multi_axis_result.MultiAxisResult.plot`).
     dpi : float
         Resolution of the figures [dots per inch].
 

@@ -126,6 +126,55 @@ def test_exact_responses_agree_with_the_interconnected_state_space():
     assert np.sum(np.abs(all_poles) < 1e-9) == 2
 
 
+def _four_loops():
+    return {a: AxisLoop(g, inverse_plant=control.tf([k], [1.0, p]), equivalent_delay=0.03,
+                        actuator=first_order_actuator(30.0), sensor_delay=0.01)
+            for a, g, k, p in (("roll", PIDGains(0.5, 0.2, 0.1), 5.0, 1.5), ("pitch", PIDGains(0.6, 0.1, 0.1), 4.0, 1.0),
+                               ("yaw", PIDGains(0.8, 0.1, 0.3), 3.0, 0.5), ("heave", PIDGains(0.3, 0.05, 0.4), 8.0, 0.4))}
+
+
+def test_given_interconnections_are_used_as_given_and_checked():
+    emf = MultiAxisEMF(four_axis(), _four_loops())
+    assert not emf.has_closed_loop()
+    fb, cl = emf.feedback_poles(), emf.closed_loop()
+    assert emf.has_closed_loop()
+    same = emf.with_interconnections(feedback_poles=fb, closed_loop=cl)
+    assert same.closed_loop() is cl and same.has_closed_loop()
+    np.testing.assert_array_equal(same.closed_loop_poles(), emf.closed_loop_poles())
+    a, b = evaluate_specs(emf.axis_view("roll"), axis_specs("roll")), evaluate_specs(same.axis_view("roll"),
+                                                                                     axis_specs("roll"))
+    np.testing.assert_array_equal(a.value.to_numpy(float), b.value.to_numpy(float))
+    # what is given is what is used (not rebuilt), also after many frequency grids have come and gone
+    moved = emf.with_interconnections(feedback_poles=fb - 1.0)
+    for k in range(12):
+        moved.broken_loop("roll").response(np.geomspace(0.1, 10.0, 5 + k))
+    np.testing.assert_array_equal(moved.feedback_poles(), fb - 1.0)
+    np.testing.assert_array_equal(moved.closed_loop_poles()[fb.size:], emf.closed_loop_poles()[fb.size:])
+    with pytest.raises(ValueError, match="finite"):
+        emf.with_interconnections(feedback_poles=np.r_[fb, np.nan])
+    with pytest.raises(ValueError, match="inputs"):
+        emf.with_interconnections(closed_loop=control.ss(cl.A, cl.B, cl.C, cl.D))
+
+
+def test_new_gains_keep_the_pilot_path_poles_and_match_a_fresh_build():
+    emf = MultiAxisEMF(four_axis(), _four_loops())
+    emf.closed_loop_poles()
+    gains = {"roll": PIDGains(0.9, 0.0, 0.2), "yaw": PIDGains(1.2, 0.3, 0.5)}
+    copy = emf.with_gains(gains)
+    fresh = MultiAxisEMF(four_axis(), {a: (AxisLoop(gains[a], l.command_model, l.inverse_plant, l.equivalent_delay,
+                                                    l.actuator, l.sensor_delay) if a in gains else l)
+                                       for a, l in copy.loops.items()})
+    np.testing.assert_array_equal(copy.closed_loop_poles(), fresh.closed_loop_poles())
+    # the closed loop's own eigenvalues: the same set (the rate commands' integrators aside)
+    eig = np.linalg.eigvals(fresh.closed_loop().A)
+    eig = eig[np.abs(eig) > 1e-9]
+    poles = copy.closed_loop_poles()
+    assert eig.size == poles.size
+    # each eigenvalue's nearest pole, relative to its size (eigenvalue round-off of two assemblies)
+    gap = np.min(np.abs(eig[:, None] - poles[None, :]), axis=1) / np.maximum(np.abs(eig), 1.0)
+    assert np.max(gap) < 1e-6
+
+
 def test_rate_command_axes_hold_the_commanded_rate():
     loops = {a: AxisLoop(g, inverse_plant=control.tf([k], [1.0, p]), actuator=first_order_actuator(30.0))
              for a, g, k, p in (("roll", PIDGains(0.5, 0.2, 0.1), 5.0, 1.5), ("pitch", PIDGains(0.6, 0.1, 0.1), 4.0, 1.0),

@@ -12,7 +12,8 @@ import pytest
 
 from controllers import DMOSettings, PIDGains, design_multi_axis
 from controllers.multi_axis_check import global_check
-from controllers.multi_axis_design import MultiAxisResult, axis_specs
+from controllers.multi_axis_design import axis_specs
+from controllers.multi_axis_result import MultiAxisResult
 from controllers.multi_axis_guard import GUARDED_SPECS
 from controllers.specs import evaluate_specs
 
