@@ -299,7 +299,8 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
         is zero (a zero gain of the design sits there). The design's own gains
         are one member of the first generation.
     local_evaluations : int
-        Budget of the local stage (0: none): a COBYLA search (scipy) from the best
+        Budget of the local stage (0: none; else at least 3 per axis + 3, COBYLA's
+        least budget for its variables): a COBYLA search (scipy) from the best
         feasible point of the global stage (the design when none beats it) over the
         same variables and box, maximising the smallest crossover ratio subject to
         every graded spec's normalised margin >= 0 on every axis (each clipped to
@@ -350,6 +351,11 @@ def joint_check(result, maxiter=12, popsize=2, seed=0, tolerance=0.01, decades=1
         raise ValueError(f"joint_check: local_evaluations must be an integer >= 0, got {local_evaluations!r}")
     t0 = time.perf_counter()
     emf, axes = result.emf, list(result.emf.axes)
+    if 0 < local_evaluations < 3 * len(axes) + 3:
+        # COBYLA's least budget: its variables (every gain and the smallest ratio) + 2
+        raise ValueError(f"joint_check: local_evaluations must be 0 or at least {3 * len(axes) + 3} for "
+                         f"{len(axes)} axes (COBYLA needs its {3 * len(axes) + 1} variables + 2), "
+                         f"got {local_evaluations}")
     specs = {a: _graded(result.spec_lists[a]) for a in axes}
     base = _grade(emf, specs)
     dmo_wc = {a: base[a][0] for a in axes}

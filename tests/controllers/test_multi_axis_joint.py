@@ -150,6 +150,7 @@ def test_the_local_stage_does_not_dominate_the_dmo_design(designed):
 @pytest.mark.parametrize("kwargs, name", [({"maxiter": 0}, "maxiter"), ({"popsize": 1.5}, "popsize"),
                                           ({"local_evaluations": -1}, "local_evaluations"),
                                           ({"local_evaluations": 2.0}, "local_evaluations"),
+                                          ({"local_evaluations": 8}, "at least 9 for 2 axes"),
                                           ({"maxiter": True}, "maxiter"), ({"tolerance": -0.1}, "tolerance"),
                                           ({"tolerance": float("nan")}, "tolerance"), ({"decades": 0}, "decades")])
 def test_bad_arguments_are_named(designed, kwargs, name):
