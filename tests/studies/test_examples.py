@@ -45,6 +45,21 @@ def test_tour_aircraft_to_design(tmp_path, monkeypatch):
     assert (tmp_path / "tour_hq_window.png").stat().st_size > 0
 
 
+@pytest.mark.slow
+def test_tour_full_aircraft_design(tmp_path, monkeypatch):
+    ns = _run("full_aircraft_design.py", tmp_path, monkeypatch)
+    table, result = ns["table"], ns["result"]
+    assert list(table.index) == ["roll", "pitch", "yaw", "heave"]
+    # every Level 1 spec of every axis met on the simultaneous closed loop, each loop crossing over
+    assert (table.unmet == "").all(), table.unmet
+    assert (table.crossover > 0.5).all()
+    # the couplings are those of the closed loop: small off-axis step responses (under a tenth
+    # of the on-axis one), yet not zero: the aircraft is coupled
+    ratios = result.coupling().set_index(["stick", "response"]).step_ratio
+    assert 0 < ratios.max() < 0.1
+    assert (tmp_path / "tour_hq_window_roll_multi_axis.png").stat().st_size > 0
+
+
 def test_docs_tour_includes_every_example_and_the_readme_links_to_it():
     # the tour page includes the scripts themselves (literalinclude), so it cannot
     # show a stale copy; every script in examples/ must be on it
