@@ -43,8 +43,9 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
     mte : str or None
         None (default): the specs the design graded its final loops on
         (``result.spec_lists``: its MTE class, flight regime and final boundaries);
-        a string: the hover specs of that MTE class rebuilt at the DMO's final
-        boundaries.
+        a string: the specs of that MTE class, in the design's flight regime and with
+        the boundaries it was given (``result.speed``, ``result.boundaries``), rebuilt
+        at the DMO's final boundaries.
     progress : bool
         tqdm counters of the searches.
     guards : bool or None
@@ -97,7 +98,8 @@ def global_check(result, maxiter=15, popsize=6, seed=0, beat_tolerance=0.01, mte
         # the design's own specs, so that a forward-flight design is checked on the
         # forward-flight charts it was designed against
         specs = (result.spec_lists[a] if mte is None
-                 else axis_specs(a, wc, wd, mte=mte, limits=result.limits.get(a)))
+                 else axis_specs(a, wc, wd, mte=mte, limits=result.limits.get(a), speed=result.speed,
+                                 boundaries=result.boundaries))
         table = evaluate_specs(design, specs)
         graded = table[(table.kind != "objective") & (table.spec != "CrsMnG2")]
         ok = bool(graded.met.all())

@@ -70,6 +70,11 @@ DEFAULT_CROSSOVER_START = {"roll": 1.5, "pitch": 1.5, "yaw": 1.0, "heave": 0.5}
 DEFAULT_SETTINGS = DMOSettings(multistart=64)
 #: spec families graded on time histories of a stated control amplitude: not DMO constraints
 _TIME_HISTORY_FAMILIES = ("large_amplitude", "coupling")
+#: families a multi-axis design cannot grade (no response of theirs is formed): supplying
+#: boundaries for one is refused rather than ignored
+_UNGRADED_FAMILIES = _TIME_HISTORY_FAMILIES + ("quickness",)
+#: the DMO's own design parameters: their boundaries are the crossover/DRB starts
+_DESIGN_PARAMETERS = ("CrsMnG2", "DrbRoH1")
 #: later sweeps restart the boundary raise at this fraction of the boundary reached
 _RESTART = 0.95
 
@@ -230,7 +235,8 @@ def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", limits=No
         the open-loop onset point (``OlpOpG1.pilot``, and ``OlpOpG1.dist`` when a
         disturbance amplitude is given) is graded; without them it is left out.
     **selector
-        Passed to :func:`controllers.specs_for` (``uce``, ``attention``, ...).
+        Passed to :func:`controllers.specs_for` (``uce``, ``attention``, ``speed``,
+        ``boundaries``, ...).
 
     Returns
     -------
@@ -249,7 +255,12 @@ def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", limits=No
     out = []
     if limits is not None and not isinstance(limits, ActuatorLimits):
         raise TypeError(f"axis_specs: limits must be ActuatorLimits or None, got {type(limits).__name__}")
+    _check_supplied(selector.get("boundaries"))
     for s in specs_for(axis, mte=mte, missing="skip", limits=limits, **selector):
+        if getattr(s, "family", "") in _UNGRADED_FAMILIES and s.status == "supplied":
+            raise ValueError(f"boundaries: {s.name} ({s.description}) is graded on time histories of a stated "
+                             "amplitude, which a multi-axis design does not form: grade it on the closed loop's "
+                             "responses (controllers.hq.quickness, large_amplitude, coupling)")
         if getattr(s, "family", "") in _TIME_HISTORY_FAMILIES:
             continue
         if s.name == "CrsMnG2":
@@ -263,6 +274,13 @@ def axis_specs(axis, crossover_min=None, drb_min=0.9, mte="all other", limits=No
             s = replace(s, response=_feedback_poles)
         out.append(s)
     return out
+
+
+def _check_supplied(boundaries):
+    fixed = sorted(set(boundaries or ()) & set(_DESIGN_PARAMETERS))
+    if fixed:
+        raise ValueError(f"boundaries: {fixed} are the DMO's design parameters (raised from crossover_start "
+                         "and drb_start), not supplied boundaries")
 
 
 def _rate_system(design):
@@ -301,7 +319,8 @@ def _relative_change(old, new, crossover):
 def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains=None, command_models=None,
                       actuator=None, sensor_delay=0.01, mte="all other", crossover_start=None, drb_start=0.9,
                       settings=None, later_settings=None, max_sweeps=3, gain_tolerance=0.01, progress=True,
-                      limits="hover", speed="hover", start_closed=False, guard_other_axes=False, guard_level="auto"):
+                      limits="hover", speed="hover", start_closed=False, guard_other_axes=False, guard_level="auto",
+                      boundaries=None):
     """Design the EMF loops of several axes of one MIMO aircraft against every axis's specs.
 
     Parameters
@@ -372,6 +391,10 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         commands :data:`~controllers.actuator_limits.HOVER_FULL_STICK_COMMAND` through the
         axis's command model; a dict maps axis -> ActuatorLimits (an axis left out
         gets no OLOP); None grades no OLOP.
+    boundaries : mapping, optional
+        Spec name -> Level boundaries supplied by the caller (e.g. read from their
+        copy of ADS-33E-PRF), for every axis: see :func:`controllers.specs_for`.
+        Each axis is tuned against and graded by them.
 
     Returns
     -------
@@ -382,7 +405,10 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
     SignalNameError
         The plant lacks an axis's signals.
     ValueError
-        Unknown axis or ``speed``, or ``max_sweeps`` not a positive integer.
+        Unknown axis or ``speed``, ``max_sweeps`` not a positive integer, or
+        ``boundaries`` naming an unknown spec, a DMO design parameter (CrsMnG2,
+        DrbRoH1) or a spec graded on time histories (quickness, large amplitude,
+        coupling).
 
     Notes
     -----
@@ -409,6 +435,9 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         raise ValueError(f"speed must be one of {list(SPEEDS)}, got {speed!r}")
     if not isinstance(max_sweeps, int) or max_sweeps < 1:
         raise ValueError(f"max_sweeps must be an integer >= 1, got {max_sweeps!r}")
+    chosen = {"mte": mte, "speed": speed, "boundaries": boundaries}
+    for a in axes:      # bad boundaries are refused before any design work
+        axis_specs(a, **chosen)
     settings = settings or DEFAULT_SETTINGS
     later_settings = later_settings or replace(settings, global_samples=0)
     actuator = second_order_actuator(35.0, 0.7) if actuator is None else actuator
@@ -440,11 +469,10 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
             plants[a] = eff
             design = AxisEMFDesign(eff, gains[a], axis=a, command_model=cms[a], actuator=actuator,
                                    sensor_delay=sensor_delay)
-            guards = (axis_guards(plant, others, design, {b: axis_specs(b, mte=mte, speed=speed) for b in others},
+            guards = (axis_guards(plant, others, design, {b: axis_specs(b, **chosen) for b in others},
                                   level=guard_level) if guard_other_axes else [])
             tuned_from[a], tuned_with[a] = gains[a], tuple(others)
-            factory = (lambda wc, wd, a=a, guards=guards: axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed)
-                       + guards)
+            factory = (lambda wc, wd, a=a, guards=guards: axis_specs(a, wc, wd, limits=lims[a], **chosen) + guards)
             ts = time.perf_counter()
             prev = results.get(a)
             # later sweeps continue locally just below the boundaries the axis reached; the full
@@ -489,11 +517,12 @@ def design_multi_axis(plant, axes=("roll", "pitch", "yaw", "heave"), start_gains
         res = results[a]
         wc = res.crossover_boundary if res is not None else wc0[a]
         wd = res.drb_boundary if res is not None and np.isfinite(res.drb_boundary) else drb_start
-        spec_lists[a] = axis_specs(a, wc, wd, mte=mte, limits=lims[a], speed=speed)
+        spec_lists[a] = axis_specs(a, wc, wd, limits=lims[a], **chosen)
         tables[a] = evaluate_specs(emf.axis_view(a), spec_lists[a])
     return MultiAxisResult(emf, designs, results, tables, spec_lists, pd.DataFrame(rows), converged, messages,
                            time.perf_counter() - t0, sweep + 1, limits=lims, guard_other_axes=bool(guard_other_axes),
-                           guard_level=guard_level, tuned_from=tuned_from, tuned_with=tuned_with)
+                           guard_level=guard_level, tuned_from=tuned_from, tuned_with=tuned_with,
+                           boundaries=boundaries, speed=speed)
 
 
 def _axis_limits(limits, axes, command_models):

@@ -53,6 +53,10 @@ class MultiAxisResult:
         Axis -> the PIDGains its last DMO run started from (the guards' floor).
     tuned_with : dict
         Axis -> tuple of the other axes whose loops were closed during its last DMO run.
+    boundaries : mapping or None
+        The Level boundaries the caller supplied (spec name -> values), as given.
+    speed : {"hover", "forward"}
+        The flight regime whose specs the design graded.
     """
 
     emf: MultiAxisEMF
@@ -71,6 +75,8 @@ class MultiAxisResult:
     guard_level: object = "auto"
     tuned_from: dict = field(default_factory=dict)
     tuned_with: dict = field(default_factory=dict)
+    boundaries: object = None
+    speed: str = "hover"
     _coupling: pd.DataFrame | None = field(default=None, repr=False)
 
     def to_pandas(self):

@@ -39,6 +39,7 @@ __all__ = ["bandwidth_chart", "bandwidth_specs", "rectangle_regions", "BANDWIDTH
 _BW_FAR, _TAU_LOW = 100.0, -1.0
 #: distance units of the bandwidth chart: 1 rad/s and 0.1 s
 _SCALE = (1.0, 0.1)
+_AXES = ("bandwidth w_BW [rad/s]", "phase delay tau_p [s]", _SCALE, ((0.0, 8.0), (0.0, 0.4)))
 _TEST = "tests/test_hq_specs.py::test_bandwidth_chart_values"
 
 
@@ -77,7 +78,7 @@ def rectangle_regions(bw1, bw2, tau1, tau2):
     if not (bw1 >= bw2 > 0 and tau2 >= tau1):
         raise ValueError(f"rectangle_regions: need bw1 >= bw2 > 0 and tau2 >= tau1, got {bw1}, {bw2}, {tau1}, {tau2}")
     box = lambda bw, tau: [(bw, _TAU_LOW), (_BW_FAR, _TAU_LOW), (_BW_FAR, tau), (bw, tau)]
-    return LevelRegions(box(bw1, tau1), box(bw2, tau2), _SCALE, "bandwidth w_BW [rad/s]", "phase delay tau_p [s]",
+    return LevelRegions(box(bw1, tau1), box(bw2, tau2), _SCALE, _AXES[0], _AXES[1],
                         limits=((0.0, max(8.0, 3 * bw1)), (0.0, max(0.4, 1.5 * tau2))))
 
 
@@ -166,12 +167,12 @@ def bandwidth_specs(response_type="attitude"):
                 _bandwidth_metric(response_type), "min", kind="soft", units="rad/s", source=source,
                 family="bandwidth", axis=axis, mtes=(mte,), uces=uces, attentions=attentions, excluded=excluded,
                 speeds=("hover",), response=_attitude_of, status=status, test=_TEST, regions=regions,
-                undefined=(m.BandwidthUndefinedError,)))
+                undefined=(m.BandwidthUndefinedError,), chart_axes=_AXES))
     for axis in ("pitch", "roll"):
         specs.append(RegionSpec(
             f"BnwAtF1.{axis}", f"{axis} attitude bandwidth and phase delay, forward flight",
             _bandwidth_metric(response_type), "min", kind="soft", units="rad/s",
             source=f"ADS-33E-PRF §3.4 forward-flight {axis} bandwidth chart: boundary values not found printed",
             family="bandwidth", axis=axis, speeds=("forward",), response=_attitude_of, status="not found",
-            test=_TEST, undefined=(m.BandwidthUndefinedError,)))
+            test=_TEST, undefined=(m.BandwidthUndefinedError,), chart_axes=_AXES))
     return specs

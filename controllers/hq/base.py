@@ -15,7 +15,8 @@ input (identity when omitted, so a spec also grades an LTI object directly).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import numbers
+from dataclasses import dataclass, field, replace
 from typing import Callable, Optional
 
 import numpy as np
@@ -27,7 +28,7 @@ from .limits import MTE_CLASSES
 __all__ = ["HQSpec", "RegionSpec", "STATUSES", "AXES", "SPEEDS", "MTE_CLASSES", "AGILITIES", "ATTENTIONS"]
 
 #: how a spec's boundary numbers are known
-STATUSES = ("printed", "approximate", "partial", "not found", "design", "objective")
+STATUSES = ("printed", "approximate", "partial", "not found", "supplied", "design", "objective")
 #: axis names of the library (signal-name checks are the design's business)
 AXES = ("pitch", "roll", "yaw", "heave")
 #: flight regimes
@@ -69,6 +70,8 @@ class HQSpec(Spec):
         the spec tells Level 1 from "not Level 1"), ``"not found"`` (no
         printed value found: evaluating raises
         :class:`~controllers.hq.boundaries.BoundaryNotPublishedError`),
+        ``"supplied"`` (boundaries given by the caller with
+        :meth:`with_boundaries`, their source quoted in ``source``),
         ``"design"`` (a design parameter, e.g. the DMO's crossover boundary)
         or ``"objective"`` (no boundary).
     test : str
@@ -97,11 +100,11 @@ class HQSpec(Spec):
     def __post_init__(self):
         if self.status not in STATUSES:
             raise ValueError(f"spec {self.name!r}: status must be one of {STATUSES}, got {self.status!r}")
-        if self.status == "not found" or (self.status == "partial" and np.isnan(self.level2)):
+        if self.status == "not found" or (self.status in ("partial", "supplied") and np.isnan(self.level2)):
             if self.direction not in ("min", "max"):
                 raise ValueError(f"spec {self.name!r}: direction must be 'min' or 'max', got {self.direction!r}")
-            if self.status == "partial" and not np.isfinite(self.level1):
-                raise ValueError(f"spec {self.name!r}: a 'partial' spec needs a finite Level 1 boundary")
+            if self.status != "not found" and not np.isfinite(self.level1):
+                raise ValueError(f"spec {self.name!r}: a {self.status!r} spec needs a finite Level 1 boundary")
             return
         super().__post_init__()
 
@@ -115,6 +118,73 @@ class HQSpec(Spec):
     def available(self):
         """Whether the spec can grade a design (boundaries known, inputs complete)."""
         return self.status != "not found" and not self.missing_input
+
+    def with_boundaries(self, level1, level2=np.nan, *, source, level3=np.nan):
+        """A copy of the spec graded against Level boundaries the caller supplies.
+
+        For a spec whose boundary values were not found printed (evaluating it
+        raises :class:`~controllers.hq.boundaries.BoundaryNotPublishedError`),
+        or to grade against other values than the library's (a programme's own
+        requirement).  The copy's ``status`` is ``"supplied"`` and its
+        ``source`` quotes ``source`` first; its smooth NLP constraint, if it
+        has one, reads the new Level 1 boundary, so the DMO honours it.
+
+        Parameters
+        ----------
+        level1 : float
+            Level 1/2 boundary [the spec's ``units``].
+        level2 : float, optional
+            Level 2/3 boundary; NaN (default) when only the Level 1 boundary is
+            known: the copy then tells Level 1 from "not Level 1".
+        source : str
+            Where the values come from (document, paragraph, figure): quoted in
+            tables and charts.
+        level3 : float, optional
+            A further limit beyond Level 2 (informational).
+
+        Returns
+        -------
+        HQSpec
+
+        Raises
+        ------
+        ValueError
+            An objective or design-parameter spec; an empty ``source``; a
+            boundary not a finite number; Level 1 less demanding than Level 2
+            (or Level 2 than Level 3).
+
+        See Also
+        --------
+        controllers.specs_for : its ``boundaries`` argument supplies them by spec name.
+
+        Examples
+        --------
+        >>> from controllers.hq.generic import generic_specs
+        >>> drb = [s for s in generic_specs() if s.name == "DrbPiH1"][0]
+        >>> drb.available
+        False
+        >>> mine = drb.with_boundaries(0.5, 0.25, source="programme requirement, pitch DRB")
+        >>> mine.available, mine.status, mine.boundary_text()
+        (True, 'supplied', 'L1 >= 0.5 rad/s; L2 >= 0.25 rad/s')
+        """
+        if self.kind == "objective" or self.status in ("design", "objective"):
+            raise ValueError(f"spec {self.name!r} is {'an objective' if self.kind == 'objective' else 'a design parameter'}"
+                             " (no Level boundary to supply)")
+        text = _source_text(self.name, source)
+        l1, l2, l3 = (_boundary_number(self.name, n, v) for n, v in
+                      (("level1", level1), ("level2", level2), ("level3", level3)))
+        if not np.isfinite(l1):
+            raise ValueError(f"spec {self.name!r}: level1 must be a finite number, got {level1!r}")
+        sign = 1.0 if self.direction == "min" else -1.0
+        word = "at least" if self.direction == "min" else "at most"
+        for (a, na), (b, nb) in (((l1, "level1"), (l2, "level2")), ((l2, "level2"), (l3, "level3"))):
+            if np.isfinite(a) and np.isfinite(b) and sign * (a - b) < 0:
+                raise ValueError(f"spec {self.name!r} (direction {self.direction!r}): {na} must be {word} {nb} "
+                                 f"(the better Level is the more demanding), got {na}={a:g}, {nb}={b:g}")
+        if not np.isfinite(l2) and np.isfinite(l3):
+            raise ValueError(f"spec {self.name!r}: level3 given without level2")
+        return replace(self, level1=l1, level2=l2, level3=l3, status="supplied",
+                       source=f"{text} (supplied; library entry: {self.source})")
 
     def boundary_text(self):
         """The boundary values as one line of text (for tables)."""
@@ -161,6 +231,22 @@ class HQSpec(Spec):
         return {"value": v, "level": 1 if margin >= 0 else np.nan, "margin": float(margin)}
 
 
+def _source_text(name, source):
+    if not isinstance(source, str) or not source.strip():
+        raise ValueError(f"spec {name!r}: supplied boundaries need a source (document, paragraph, figure), "
+                         f"got {source!r}")
+    return source.strip()
+
+
+def _boundary_number(name, what, value):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"spec {name!r}: {what} must be a number, got {value!r}")
+    v = float(value)
+    if np.isinf(v):
+        raise ValueError(f"spec {name!r}: {what} must be finite (or NaN: not given), got {value!r}")
+    return v
+
+
 @dataclass
 class RegionSpec(HQSpec):
     """A 2-D spec: ``metric`` returns ``(x, y)``, graded against ``regions``.
@@ -168,11 +254,15 @@ class RegionSpec(HQSpec):
     ``value`` (the table's number) is ``x``; ``y`` is returned as ``"y"`` and,
     for bandwidth charts, as ``"phase_delay"`` (the column the spec tables and
     :func:`controllers.hq_window` read).  ``level1``/``level2`` hold nothing
-    for a region spec and are NaN.
+    for a region spec and are NaN.  ``chart_axes`` is ``(x_label, y_label,
+    scale, limits)`` of the chart (see :class:`~controllers.hq.boundaries.LevelRegions`):
+    what :meth:`with_boundaries` gives supplied polygons when the spec has no
+    regions of its own.
     """
 
     regions: Optional[LevelRegions] = None
     undefined: tuple = field(default=())
+    chart_axes: tuple = ()
 
     def __post_init__(self):
         if self.status not in STATUSES:
@@ -185,6 +275,61 @@ class RegionSpec(HQSpec):
     def value(self, design):
         x, y = self.metric(self._input(design))
         return float(x), float(y)
+
+    def with_boundaries(self, level1, level2, *, source, scale=None, limits=None):
+        """A copy of the spec graded against Level regions the caller supplies.
+
+        Parameters
+        ----------
+        level1, level2 : array_like, shape (n, 2)
+            Vertices of the Level 1 region and of the Level 1 + Level 2 region
+            (which must contain it), in the metric's ``(x, y)`` order and units
+            (for bandwidth: w_BW [rad/s], tau_p [s]); close an open chart region
+            with far vertices outside any plausible design.
+        source : str
+            Where the vertices come from (document, paragraph, figure).
+        scale : (float, float), optional
+            Distance units of the margin; default the spec's own chart's.
+        limits : ((float, float), (float, float)), optional
+            The chart's plotted extents ``((x0, x1), (y0, y1))``; default the
+            spec's own chart's.
+
+        Returns
+        -------
+        RegionSpec
+            ``status`` ``"supplied"``.
+
+        Raises
+        ------
+        ValueError
+            An empty ``source``, a polygon of fewer than three finite vertices,
+            a Level 1 vertex outside the Level 2 region, or a spec that knows
+            no chart axes and is given no ``scale``.
+
+        Examples
+        --------
+        >>> from controllers.hq.bandwidth import bandwidth_specs
+        >>> pitch = [s for s in bandwidth_specs() if s.name == "BnwAtH1.pitch"][0]
+        >>> pitch.available
+        False
+        >>> far = 100.0
+        >>> mine = pitch.with_boundaries([(2, -1), (far, -1), (far, 0.15), (3, 0.15), (2, 0.1)],
+        ...                              [(1, -1), (far, -1), (far, 0.25), (1, 0.25)],
+        ...                              source="my reading of the chart")
+        >>> mine.status, mine.regions.level((2.5, 0.1)), mine.regions.level((2.5, 0.14))
+        ('supplied', 1, 2)
+        """
+        text = _source_text(self.name, source)
+        r = self.regions
+        x_label, y_label, own_scale, own_limits = ((r.x_label, r.y_label, r.scale, r.limits) if r is not None
+                                                   else self.chart_axes or ("x", "y", None, None))
+        scale = own_scale if scale is None else tuple(scale)
+        if scale is None:
+            raise ValueError(f"spec {self.name!r} knows no chart axes: give the scale of its (x, y) chart")
+        regions = LevelRegions(level1, level2, scale, x_label, y_label,
+                               limits=own_limits if limits is None else limits)
+        return replace(self, regions=regions, status="supplied",
+                       source=f"{text} (supplied; library entry: {self.source})")
 
     def boundary_text(self):
         if self.status == "not found":

@@ -19,12 +19,13 @@ amplitude Level 1 20 s, Level 2 12 s, Level 3 4 s.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 
 import control
 import numpy as np
 
-from .base import HQSpec
+from .base import HQSpec, _source_text
 
 __all__ = ["oscillatory_mode", "time_to_double", "DampingFrequencySpec", "forward_flight_specs",
            "DUTCH_ROLL_MIL_F_8785C"]
@@ -120,9 +121,53 @@ class DampingFrequencySpec(HQSpec):
             for k, (b1, b2) in self.limits.items():
                 if k not in ("zeta", "sigma", "wn") or not (np.isfinite(b1) and np.isfinite(b2) and b1 > b2):
                     raise ValueError(f"spec {self.name!r}: bad limit {k!r}: {(b1, b2)}")
-        self.level1 = self.limits.get("zeta", (np.nan,))[0]
-        self.level2 = self.limits.get("zeta", (np.nan, np.nan))[1]
+        # the table's level1/level2: the damping-ratio bounds, else the first bound given
+        key = "zeta" if "zeta" in self.limits else next(iter(self.limits), None)
+        self.level1, self.level2 = self.limits[key] if key is not None else (np.nan, np.nan)
         super().__post_init__()
+
+    def with_boundaries(self, limits, *, source):
+        """A copy of the spec graded against bounds the caller supplies.
+
+        Parameters
+        ----------
+        limits : mapping
+            ``"zeta"`` [-], ``"sigma"`` (zeta w_n) [rad/s] and/or ``"wn"`` [rad/s] ->
+            ``(Level 1, Level 2)`` lower bounds, Level 1 the higher.
+        source : str
+            Where the values come from (document, paragraph, figure).
+
+        Returns
+        -------
+        DampingFrequencySpec
+            ``status`` ``"supplied"``.
+
+        Raises
+        ------
+        ValueError
+            An empty ``source`` or ``limits``, an unknown key, or a pair that is
+            not two finite numbers with Level 1 above Level 2.
+
+        Examples
+        --------
+        >>> ldo = [s for s in forward_flight_specs() if s.name == "LatDirOscF.ADS-33"][0]
+        >>> mine = ldo.with_boundaries({"zeta": (0.2, 0.05)}, source="my reading of the chart")
+        >>> mine.evaluate([complex(-0.3, 1.0), complex(-0.3, -1.0)])["level"]
+        1
+        """
+        text = _source_text(self.name, source)
+        if not isinstance(limits, Mapping) or not limits:
+            raise ValueError(f"spec {self.name!r}: limits must be a non-empty mapping of 'zeta', 'sigma' and/or "
+                             f"'wn' -> (Level 1, Level 2), got {limits!r}")
+        pairs = {}
+        for k, v in limits.items():
+            try:
+                pairs[k] = tuple(float(b) for b in v)
+            except (TypeError, ValueError):
+                raise ValueError(f"spec {self.name!r}: limits[{k!r}] must be (Level 1, Level 2), got {v!r}") from None
+            if len(pairs[k]) != 2:
+                raise ValueError(f"spec {self.name!r}: limits[{k!r}] must be (Level 1, Level 2), got {v!r}")
+        return replace(self, limits=pairs, status="supplied", source=f"{text} (supplied; library entry: {self.source})")
 
     def value(self, design):
         zeta, wn = self.metric(self._input(design))

@@ -94,6 +94,10 @@ def model_following_cost(response, command, fit_range=(1.0, 10.0), n_points=20):
     return cifer_cost(h, hc, np.ones_like(w))
 
 
+def _disturbance_bandwidth(design):
+    return m.disturbance_rejection_bandwidth(design.disturbance_response())
+
+
 def _relabel(spec, **meta):
     base = {f.name: getattr(spec, f.name) for f in fields(Spec)}
     return HQSpec(**{**base, **meta})
@@ -130,7 +134,7 @@ def generic_specs(limits=None, crossover_min=2.0, drb_min=0.9):
         out.append(_relabel(s, family="generic", axis="roll" if s.name == "DrbRoH1" else "any",
                             status=status, test=_TEST, source=f"{s.source}; {note}"))
     for axis, name in (("pitch", "DrbPiH1"), ("yaw", "DrbYaH1"), ("heave", "DrbHeH1")):
-        out.append(HQSpec(name, f"{axis} disturbance rejection bandwidth", m.disturbance_rejection_bandwidth, "min",
+        out.append(HQSpec(name, f"{axis} disturbance rejection bandwidth", _disturbance_bandwidth, "min",
                           units="rad/s", source=f"CONDUIT {name} / ADS-33E-PRF: {axis} DRB boundary not found printed",
                           family="generic", axis=axis, status="not found", test=_TEST))
     amplitude = {"pilot": None if limits is None else limits.stick_amplitude,

@@ -22,6 +22,9 @@ from .base import RegionSpec
 __all__ = ["QuicknessResult", "attitude_quickness", "pulse_quickness", "quickness_specs"]
 
 _TEST = "tests/test_hq_specs.py::test_quickness_pulse_closed_form"
+#: the metric's (x, y) and its distance units: 0.1 1/s of quickness weighs as 2 deg of attitude
+#: (the charts span a few 1/s against some tens of degrees)
+_AXES = ("quickness Q [1/s]", "minimum attitude change [deg]", (0.1, 2.0), ((0.0, 4.0), (0.0, 60.0)))
 
 
 @dataclass(frozen=True)
@@ -166,5 +169,6 @@ def quickness_specs():
                 _quickness_metric, "min", kind="soft", units="1/s",
                 source=f"ADS-33E-PRF {para} moderate-amplitude {word} changes ({mte}): "
                        "quickness boundary values not found printed",
-                family="quickness", axis=axis, mtes=(mte,), speeds=("hover",), status="not found", test=_TEST))
+                family="quickness", axis=axis, mtes=(mte,), speeds=("hover",), status="not found", test=_TEST,
+                chart_axes=_AXES))
     return specs

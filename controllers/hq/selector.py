@@ -6,15 +6,17 @@ valid names.  No prefix matching: ``"tracking"`` is not an MTE class.
 """
 from __future__ import annotations
 
+import difflib
 import math
 import numbers
+from collections.abc import Mapping
 
-from .base import AGILITIES, ATTENTIONS, AXES, SPEEDS
+from .base import AGILITIES, ATTENTIONS, AXES, SPEEDS, RegionSpec
 from .bandwidth import bandwidth_specs
 from .boundaries import BoundaryNotPublishedError
 from .limits import MTE_ALIASES, _choice, canonical_mte
 from .coupling import coupling_specs
-from .forward_flight import forward_flight_specs
+from .forward_flight import DampingFrequencySpec, forward_flight_specs
 from .generic import generic_specs
 from .heave import heave_specs
 from .large_amplitude import large_amplitude_specs
@@ -79,7 +81,7 @@ def all_specs(limits=None, response_type="attitude"):
 
 
 def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="hover", agility="moderate",
-              limits=None, missing="raise", generic=True, response_type="attitude"):
+              limits=None, missing="raise", generic=True, response_type="attitude", boundaries=None):
     """The library's specs that apply to one axis and mission task element.
 
     Parameters
@@ -106,6 +108,16 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
         Include the CONDUIT generic specs (stability, margins, DRB/DRP, ...).
     response_type : {"attitude", "rate"}
         Response type for the bandwidth definition.
+    boundaries : mapping, optional
+        Spec name -> Level boundaries the caller supplies (e.g. read from their
+        copy of ADS-33E-PRF) for the chart this call selects: a mapping with
+        ``source`` and ``level1`` (and ``level2``, ``level3``) for a scalar spec,
+        or ``level1``/``level2`` polygons (and ``scale``, ``limits``) for a
+        chart; see :meth:`HQSpec.with_boundaries` and
+        :meth:`~controllers.hq.base.RegionSpec.with_boundaries`.  A supplied
+        spec is available (status ``"supplied"``); a name the library does not
+        have is refused, one that does not apply to this selection is ignored
+        (a mapping may serve every axis).  JSON-ready: ``json.load`` gives one.
 
     Returns
     -------
@@ -119,6 +131,10 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
     BoundaryNotPublishedError
         ``missing="raise"`` and some applicable spec has no printed boundary.
 
+    See Also
+    --------
+    controllers.hq.base.HQSpec.with_boundaries : one spec's supplied boundaries.
+
     Examples
     --------
     >>> [s.name for s in specs_for("heave", missing="skip", generic=False)]
@@ -127,6 +143,12 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
     Traceback (most recent call last):
     ...
     ValueError: unknown mte 'tracking'; valid names (case-insensitive, exact): ['target acquisition and tracking', 'all other'] (also accepted: ['all other mte', 'all other mtes'])
+
+    A boundary read from one's own copy of the standard makes a spec usable:
+
+    >>> mine = {"DrbPiH1": {"level1": 0.5, "level2": 0.25, "source": "programme requirement"}}
+    >>> [(s.name, s.status) for s in specs_for("pitch", missing="skip", boundaries=mine) if s.name == "DrbPiH1"]
+    [('DrbPiH1', 'supplied')]
     """
     axis = _choice("axis", axis, AXES)
     mte = canonical_mte(mte)
@@ -142,6 +164,8 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
         + heave_specs() + forward_flight_specs())
     chosen = [s for s in pool if (generic or s.family != "generic")
               and s.applies_to(axis, mte, agility, uce, attention, speed)]
+    if boundaries is not None:
+        chosen = _supplied(chosen, boundaries, {s.name for s in all_specs(limits, response_type)})
     absent = [s for s in chosen if not s.available]
     if absent and missing == "raise":
         lines = "\n".join(f"  {s.name}: {s.description} -- " + (f"needs {s.missing_input}" if s.missing_input
@@ -157,3 +181,37 @@ def specs_for(axis, mte="all other", uce=1, attention="fully attended", speed="h
     if dupes:   # guards the registry: a spec list must name each spec once
         raise RuntimeError(f"specs_for: several applicable specs share the names {dupes}")
     return chosen
+
+
+#: per kind of spec: the keys a supplied entry may have, and those it must have
+_KEYS = {"scalar": ({"source", "level1", "level2", "level3"}, ["level1", "source"]),
+         "chart polygons": ({"source", "level1", "level2", "scale", "limits"}, ["level1", "level2", "source"]),
+         "mode bounds": ({"source", "limits"}, ["limits", "source"])}
+
+
+def _supplied(chosen, boundaries, library):
+    """``chosen`` with the specs named in ``boundaries`` replaced by their supplied copies."""
+    if not isinstance(boundaries, Mapping):
+        raise TypeError(f"boundaries must be a mapping of spec name -> boundary values, got {type(boundaries).__name__}")
+    for name, values in boundaries.items():
+        if name not in library:
+            close = difflib.get_close_matches(str(name), sorted(library), n=3)
+            raise ValueError(f"boundaries: no spec named {name!r} in the library"
+                             + (f" (did you mean {close}?)" if close else f"; names: {sorted(library)}"))
+        if not isinstance(values, Mapping):
+            raise TypeError(f"boundaries[{name!r}] must be a mapping (source, level1, level2, ...), "
+                            f"got {type(values).__name__}")
+    out = []
+    for s in chosen:
+        values = boundaries.get(s.name)
+        if values is None:
+            out.append(s)
+            continue
+        kind = ("chart polygons" if isinstance(s, RegionSpec) else
+                "mode bounds" if isinstance(s, DampingFrequencySpec) else "scalar")
+        keys, needed = _KEYS[kind]
+        if set(values) - keys or set(needed) - set(values):
+            raise ValueError(f"boundaries[{s.name!r}] ({kind}): keys must be among {sorted(keys)}, with {needed} "
+                             f"given; got {sorted(values)}")
+        out.append(s.with_boundaries(**values))
+    return out
