@@ -9,7 +9,8 @@
             ├─ control.interconnect state space (Padé) ─► poles, time responses
             └─ specs (Table 7.3) ─► evaluate_specs ─► hq_window
     hq: spec library (every axis, ADS-33E-PRF boundaries as data, provenance per spec):
-        specs_for(axis, mte=..., uce=..., attention=..., speed=...), spec_table()
+        specs_for(axis, mte=..., uce=..., attention=..., speed=..., boundaries=...), spec_table();
+        boundaries the library lacks are supplied by name (status "supplied")
     smooth: each spec's own NLP constraint (the DMO's NLP is assembled from the spec list)
     dmo(design or [designs]): CasADi/IPOPT, boundaries raised by bisection to a
                  tolerance, several starts per step, every result re-checked with

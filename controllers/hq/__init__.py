@@ -17,7 +17,11 @@ data (polygons for 2-D charts), its source, its axis and where it applies::
     charts          spec_chart / family_window: Level regions and a design's point
 
 Boundaries that were not found printed are marked ``status="not found"``;
-evaluating such a spec raises :class:`BoundaryNotPublishedError`.
+evaluating such a spec raises :class:`BoundaryNotPublishedError`.  A user who
+holds the values (their copy of ADS-33E-PRF, a programme requirement) supplies
+them by name, ``specs_for(..., boundaries={name: {...}})``, or per spec with
+:meth:`HQSpec.with_boundaries`; the spec then grades and steers the DMO, its
+status reading ``"supplied"`` and its source quoting theirs.
 """
 from .base import AXES, HQSpec, MTE_CLASSES, RegionSpec
 from .boundaries import BoundaryNotPublishedError, LevelRegions
