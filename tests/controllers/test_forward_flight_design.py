@@ -135,3 +135,26 @@ def test_start_closed_designs_an_axis_on_the_aircraft_its_partner_stabilises():
     # open pitch loop: the roll loop's plant carries the divergence, no roll gains can remove it
     assert opened.dmo_results["roll"] is None and "EigLcG1" in opened.messages["roll"]
     assert closed.dmo_results["roll"] is not None
+
+
+def test_global_check_at_another_mte_keeps_the_designs_regime_and_boundaries(monkeypatch):
+    # global_check(..., mte=...) rebuilds each axis's specs: a forward-flight design must be
+    # re-checked on the forward-flight charts, with the boundaries the design was given
+    import controllers.multi_axis_check as check
+    plant = control.ss([[-1.5, 0], [1.0, 0]], [[5.0], [0]], [[1.0, 0], [0, 1.0]], 0,
+                       inputs=["delta_lat"], outputs=["p", "phi"])
+    mine = {"StbMgG1.PM": {"level1": 50.0, "level2": 40.0, "source": "test"}}
+    res = design_multi_axis(plant, axes=["roll"], settings=FAST, progress=False, max_sweeps=1, speed="forward",
+                            limits=None, boundaries=mine)
+    assert res.speed == "forward" and "SpiralF.MIL-F-8785C" in {s.name for s in res.spec_lists["roll"]}
+    built = []
+
+    def recording(*args, **kw):
+        built.append(axis_specs(*args, **kw))
+        return built[-1]
+
+    monkeypatch.setattr(check, "axis_specs", recording)
+    check.global_check(res, maxiter=1, popsize=2, mte="target acquisition and tracking")
+    names = {s.name: s for s in built[0]}
+    assert "SpiralF.MIL-F-8785C" in names and "BnwAtH1.roll" not in names
+    assert names["StbMgG1.PM"].status == "supplied" and names["StbMgG1.PM"].level1 == 50.0
