@@ -7,6 +7,7 @@ import re
 import runpy
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -58,6 +59,10 @@ def test_tour_full_aircraft_design(tmp_path, monkeypatch):
     ratios = result.coupling().set_index(["stick", "response"]).step_ratio
     assert 0 < ratios.max() < 0.1
     assert (tmp_path / "tour_hq_window_roll_multi_axis.png").stat().st_size > 0
+    # the supplied boundary grades the closed loop (the library alone cannot: not found printed)
+    row = ns["graded"].set_index("spec").loc["DrbPiH1"]
+    assert ns["pitch_drb"][0].status == "supplied" and np.isfinite(row.value) and row.value > 0
+    assert row.level == (1 if row.value >= 0.5 else 2 if row.value >= 0.25 else 3)
 
 
 def test_docs_tour_includes_every_example_and_the_readme_links_to_it():
