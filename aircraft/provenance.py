@@ -15,7 +15,8 @@ Every results folder written through the ``rotorwake`` command line carries a
   edit to documentation alone does not make results stale;
 * ``settings`` and ``settings_hash``: the command and its explicit options;
 * ``date`` (UTC, ISO 8601), ``wall_time_s`` [s], ``machine`` (cores, platform,
-  Python / numpy / numba versions, and the Biot-Savart ``kernel_backend`` the wake
+  Python / numpy / numba versions, ``versions``: those of every numerical package
+  (:func:`numerical_versions`) and the BLAS kernel family in use, and the Biot-Savart ``kernel_backend`` the wake
   runs used: a module of :data:`BACKEND_CODE`, the GPU kernel, can only have
   computed a folder's numbers if its run used that backend);
 * ``files``: the SHA-256 of every file in the folder but its hand-written description
@@ -24,7 +25,9 @@ Every results folder written through the ``rotorwake`` command line carries a
 :func:`check_results` re-hashes those modules and files: a folder is *stale*
 when the code of a module it was computed with has changed since (its bytes differ
 and so does its code digest), and *modified* when one of its files no longer
-matches the manifest. A schema-1 manifest (bytes only) is checked on bytes;
+matches the manifest; its ``versions`` column says whether the numerical packages
+differ from those of the run (reported only: a version does not make a folder stale).
+A schema-1 manifest (bytes only) is checked on bytes;
 :func:`upgrade_manifests` adds the code digests to those whose modules are still
 byte-identical, which is the only case where the digests are known to describe the
 code that ran. ``rotorwake check-results`` (and
@@ -49,7 +52,7 @@ from pathlib import Path
 __all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "BACKEND_CODE", "ResultsManifestError", "code_version",
            "settings_hash", "jsonable", "HASHED_IF_SET", "identity_repr", "identity_dict", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
            "read_manifest",
-           "check_results", "upgrade_manifests", "record_kernel_backend"]
+           "check_results", "numerical_versions", "upgrade_manifests", "record_kernel_backend"]
 
 #: File name of the manifest in each results folder.
 MANIFEST_NAME = "manifest.json"
@@ -58,7 +61,9 @@ RESULTS_DESCRIPTION = "README.md"
 #: Packages whose imported modules are recorded (the project's own code).
 PROJECT_PACKAGES = ("flightid", "aircraft", "controllers", "studies")
 # bookkeeping modules that cannot change a number: not recorded
-_NOT_RESULTS_CODE = ("aircraft/provenance.py", "studies/cli.py")
+_NOT_RESULTS_CODE = ("aircraft/provenance.py", "studies/cli.py", "aircraft/result_comparison.py")
+# distributions whose version can move a computed number, in the order reported
+_NUMERICAL_PACKAGES = ("numpy", "scipy", "control", "casadi", "numba", "slycot", "pandas", "matplotlib")
 #: Modules that compute numbers only on one Biot-Savart kernel backend: ``{path:
 #: backend}``. A change to one makes a folder stale only if its run used that
 #: backend (``machine["kernel_backend"]``), as the wake cache keys only GPU runs on
@@ -516,6 +521,66 @@ def _kernel_backend():
     return biot_savart.kernel_backend()
 
 
+def numerical_versions():
+    """Versions of Python and of the numerical packages a result can depend on.
+
+    Read from the installed distributions' metadata, so nothing heavy is imported.
+
+    Returns
+    -------
+    dict
+        ``{"python": str, "numpy": str | None, ...}``: Python, numpy, scipy, control
+        (python-control), casadi, numba, slycot, pandas and matplotlib, in that order;
+        None for a package that is not installed.
+
+    Examples
+    --------
+    >>> versions = numerical_versions()
+    >>> list(versions)[:4]
+    ['python', 'numpy', 'scipy', 'control']
+    >>> versions["python"] == platform.python_version()
+    True
+    """
+    from importlib.metadata import PackageNotFoundError, version
+    found = {"python": platform.python_version()}
+    for name in _NUMERICAL_PACKAGES:
+        try:
+            found[name] = version(name)
+        except PackageNotFoundError:
+            found[name] = None
+    return found
+
+
+def _blas_kernels():
+    """The BLAS libraries loaded in this process and the kernel family each uses, e.g.
+    ``"openblas 0.3.30 Haswell"``: sums round differently from one family to another, so a
+    number computed with another can differ in its last digits (and an optimiser's path more)."""
+    import numpy  # noqa: F401  (loads numpy's BLAS, whose kernels are the ones recorded)
+    from threadpoolctl import threadpool_info
+    found = {f"{i.get('internal_api')} {i.get('version')} {i.get('architecture')}"
+             for i in threadpool_info() if i.get("user_api") == "blas"}
+    return ", ".join(sorted(found)) or None
+
+
+def _versions_note(machine, now):
+    """``versions`` column of :func:`check_results`: the run's versions (``machine``
+    of its manifest) against ``now``; the older top-level python/numpy/numba count."""
+    recorded = {k: machine[k] for k in ("python", "numpy", "numba") if k in machine}
+    recorded.update(machine.get("versions") or {})
+    known = [k for k in now if k in recorded]
+    differs = [f"{k} {recorded[k] or 'not installed'} (now {now[k] or 'not installed'})"
+               for k in known if recorded[k] != now[k]]
+    same = [k for k in known if recorded[k] == now[k]]
+    missing = [k for k in now if k not in recorded]
+    if not missing:
+        return "differs: " + ", ".join(differs) if differs else "same"
+    if not known:
+        return "not recorded"
+    inner = "; ".join(([f"differs: {', '.join(differs)}"] if differs else [])
+                      + ([f"{', '.join(same)} same"] if same else []))
+    return f"partly recorded ({inner}); not recorded: {', '.join(missing)}"
+
+
 def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources=None):
     """Write ``manifest.json`` into a results folder.
 
@@ -547,12 +612,7 @@ def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources
     folder = Path(folder)
     if not folder.is_dir():
         raise FileNotFoundError(f"results folder {folder} does not exist")
-    import numpy
-    try:
-        import numba
-        numba_version = numba.__version__
-    except ImportError:   # pragma: no cover - a dependency
-        numba_version = None
+    versions = {**numerical_versions(), "blas": _blas_kernels()}
     files = {p.name: file_sha256(p) for p in sorted(folder.iterdir())
              if p.is_file() and p.name not in (MANIFEST_NAME, RESULTS_DESCRIPTION)}
     root_path = Path(root) if root is not None else _project_root()
@@ -568,8 +628,9 @@ def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources
         "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         "wall_time_s": round(float(wall_time_s), 2),
         "machine": {"cores": os.cpu_count(), "platform": platform.platform(),
-                    "python": platform.python_version(), "numpy": numpy.__version__,
-                    "numba": numba_version, "kernel_backend": _kernel_backend()},
+                    # the top-level three for readers older than "versions"
+                    **{k: versions[k] for k in ("python", "numpy", "numba")}, "versions": versions,
+                    "kernel_backend": _kernel_backend()},
         "files": files,
     }
     path = folder / MANIFEST_NAME
@@ -624,16 +685,21 @@ def check_results(results_root="results", root=None):
         One row per results folder: ``folder``, ``status`` (``"fresh"``,
         ``"stale"``: a module it was computed with changed or is gone,
         ``"modified"``: a file differs from the manifest, ``"no manifest"``),
-        ``date`` of the run and ``detail`` (which modules or files).
+        ``date`` of the run, ``detail`` (which modules or files) and ``versions``
+        (``"same"``, ``"differs: scipy 1.16.0 (now 1.17.1)"``, or ``"partly
+        recorded (...); not recorded: ..."`` for an older manifest): the
+        numerical packages of the run against :func:`numerical_versions` now. A
+        version difference is reported, it does not make a folder stale.
     """
     import pandas as pd
     root = Path(root) if root is not None else _project_root()
-    rows = []
+    rows, now = [], {**numerical_versions(), "blas": _blas_kernels()}
     for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
         try:
             manifest = read_manifest(folder)
         except ResultsManifestError as exc:
-            rows.append({"folder": folder.name, "status": "no manifest", "date": None, "detail": str(exc)})
+            rows.append({"folder": folder.name, "status": "no manifest", "date": None, "detail": str(exc),
+                         "versions": None})
             continue
         changed, documentation = _changed_sources(manifest, root)
         edited = [name for name, digest in manifest["files"].items()
@@ -649,8 +715,9 @@ def check_results(results_root="results", root=None):
             status, detail = "fresh", f"{manifest['command']} ({manifest['code']['git']})"
             if documentation:
                 detail += "; documentation only changed since in: " + ", ".join(documentation)
-        rows.append({"folder": folder.name, "status": status, "date": manifest["date"], "detail": detail})
-    return pd.DataFrame(rows, columns=["folder", "status", "date", "detail"])
+        rows.append({"folder": folder.name, "status": status, "date": manifest["date"], "detail": detail,
+                     "versions": _versions_note(manifest.get("machine", {}), now)})
+    return pd.DataFrame(rows, columns=["folder", "status", "date", "detail", "versions"])
 
 
 def _changed_sources(manifest, root):

@@ -36,6 +36,11 @@ __all__ = ["multistart", "compass_polish", "ratio_polish"]
 #: traded for another (the best design sits where a spec boundary runs across the gain
 #: axes: e.g. attitude gain traded for rate gain on a rate-command loop, a move no
 #: single-gain step makes without leaving the feasible set)
+#: a gain ratio this small against the crossover (K_Iphi/K_phi below 1e-6 wc, K_p/K_phi below
+#: 1e-6 / wc) changes no response in the handling-qualities band: the compass search sets it to
+#: exactly zero instead of walking it down by decades to round-off (a 1e-13 integral gain leaves
+#: a pole at +-1e-13 1/s whose sign decides the stability verdict from one machine to the next)
+_NEGLIGIBLE_RATIO = 1e-6
 _MOVES = np.vstack([np.eye(3), -np.eye(3), np.ones((1, 3)), -np.ones((1, 3)),
                     [np.eye(3)[i] - np.eye(3)[j] for i in range(3) for j in range(3) if i != j]])
 
@@ -209,6 +214,7 @@ def ratio_polish(designs, specs, gains, step=0.5, min_step=0.01, max_evaluations
         return gains, float("nan"), n
     g0 = best.as_array()
     r = np.log10(np.where(g0[1:] > 0, g0[1:], np.nan) / g0[0])      # log ratios; NaN: zero stays zero
+    floor = np.log10(_NEGLIGIBLE_RATIO * np.array([wc, 1.0 / wc]))
     moves = [np.array(v, float) for v in ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, -1), (1, -1), (-1, 1))]
     last = 0
     while step >= min_step and n < max_evaluations:
@@ -217,7 +223,8 @@ def ratio_polish(designs, specs, gains, step=0.5, min_step=0.01, max_evaluations
             if n >= max_evaluations:
                 break
             trial = r + step * moves[j]
-            if np.allclose(np.nan_to_num(trial - r), 0.0):
+            trial = np.where(trial < floor, np.nan, trial)      # negligible: exactly zero
+            if np.array_equal(np.isnan(trial), np.isnan(r)) and np.allclose(np.nan_to_num(trial - r), 0.0):
                 continue
             k_phi = best.K_phi
             ratios = np.where(np.isfinite(trial), 10.0 ** np.nan_to_num(trial), 0.0)

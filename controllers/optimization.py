@@ -26,6 +26,11 @@ _IPOPT_OK = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 #: IPOPT stopped on a budget: its last iterate is still scored by the true specs
 _IPOPT_UNCONVERGED = ("Maximum_Iterations_Exceeded", "Maximum_CpuTime_Exceeded", "Maximum_WallTime_Exceeded",
                       "Search_Direction_Becomes_Too_Small", "Restoration_Failed", "Infeasible_Problem_Detected")
+#: scaled gains (1 = the gain that crosses at the boundary) below this are an interior-point
+#: iterate resting on its lower bound 0, not a gain: IPOPT leaves them at 1e-16 to 1e-9 depending
+#: on the machine's round-off, and a 1e-13 integral gain adds a pole at +-1e-13 1/s whose sign
+#: then decides the stability verdict (EigLcG1). They are set to exactly zero.
+_ZERO_GAIN = 1e-8
 
 
 def _verify(design, settings):
@@ -95,6 +100,7 @@ def optimize(design, crossover_min, drb_min, specs=None, settings=None, x0=None,
         return np.clip(x, 0.0, settings.gain_upper)
 
     def to_gains(x):
+        x = np.where(np.abs(np.asarray(x, float)) < _ZERO_GAIN, 0.0, x)
         return PIDGains(*[float(v) for v in _gains(x, scale, crossover_min, tie)])
 
     starts = [] if x0 is None else [to_x(x0)]

@@ -7,14 +7,16 @@
     rotorwake <study> [options]            one study; ``rotorwake <study> --help`` for its options
     rotorwake results                      regenerate every committed results folder
     rotorwake check-results                say which committed results are stale
+    rotorwake reproduce [folders]          rerun the studies of committed folders and compare within a tolerance
     rotorwake shipped-models [names]       list, check or regenerate the shipped model files
 
 Each study command calls that study's own ``main`` with the remaining options, so
 the studies keep their own option parsers; the heavy imports (numba, CasADi,
 python-control) happen only after the command line has been parsed. Every run
 writes ``manifest.json`` into each results folder it produced (see
-:mod:`aircraft.provenance`). A run longer than a minute says so, and about how
-long, before it starts.
+:mod:`aircraft.provenance`) and, where it replaced an earlier folder, prints how
+its tables compare with the ones it replaced (:mod:`aircraft.result_comparison`).
+A run longer than a minute says so, and about how long, before it starts.
 
 Run it from the project's virtual environment: ``.venv/bin/rotorwake`` (after
 ``make study`` or ``make test``), or ``source .venv/bin/activate`` first.
@@ -25,12 +27,39 @@ import argparse
 import contextlib
 import importlib
 import inspect
+import os
+import platform
+import shutil
 import sys
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Study", "STUDIES", "main"]
+__all__ = ["Study", "STUDIES", "main", "REPRODUCIBLE_BLAS_KERNELS"]
+
+#: OpenBLAS kernel family every run uses on an x86-64 processor that has it (AVX2 and FMA: every
+#: such processor since 2013). OpenBLAS picks its kernels by processor (AVX-512 ones here, AVX2
+#: ones elsewhere), their sums round differently, and the design-margin optimiser's path through
+#: unconverged IPOPT iterates turns that round-off into designs 1-2 % apart: with one kernel family
+#: the same inputs give the same numbers on every such machine. A value already in the
+#: environment (``OPENBLAS_CORETYPE``) is kept; elsewhere (other processors) nothing is set.
+REPRODUCIBLE_BLAS_KERNELS = "Haswell"
+
+
+def _pin_blas_kernels():
+    """Set ``OPENBLAS_CORETYPE`` before numpy loads OpenBLAS (it reads it once, at load)."""
+    if "OPENBLAS_CORETYPE" in os.environ or platform.machine().lower() not in ("x86_64", "amd64"):
+        return
+    try:
+        flags = set(Path("/proc/cpuinfo").read_text().split())
+    except OSError:
+        return
+    if {"avx2", "fma"} <= flags:
+        os.environ["OPENBLAS_CORETYPE"] = REPRODUCIBLE_BLAS_KERNELS
+
+
+_pin_blas_kernels()
 
 
 @dataclass(frozen=True)
@@ -182,6 +211,10 @@ STUDIES = {s.command: s for s in (
           "power and eigenvalues against speed, modes named and tracked; the 200 kt propeller models", 1.0, default_out="results/trim_sweeps"),
 )}
 # identification_demo is written by `main` as its stage 1; `results` does not rerun it
+#: What ``rotorwake reproduce`` reruns when no folder is named: the main job's folders.
+_MAIN_FOLDERS = ("hover_control_comparison", "identification_demo")
+#: Files of a results folder that a rerun is compared on (figures differ in bytes).
+_COMPARED = ("*.csv", "*.txt")
 
 
 def _minutes(minutes):
@@ -205,6 +238,19 @@ def _parser():
     res.add_argument("--only", nargs="+", choices=[n for n, s in STUDIES.items() if s.in_results],
                      help="regenerate only these (default: all)")
     res.add_argument("--stale", action="store_true", help="regenerate only folders check-results calls stale")
+    rep = sub.add_parser("reproduce", help="rerun the study of each named results folder with the options its "
+                                           "manifest records, into a temporary folder, and compare its tables "
+                                           "with the committed ones (default: the main job's two folders, "
+                                           f"{_minutes(STUDIES['main'].minutes)})",
+                         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    rep.add_argument("folders", nargs="*", metavar="FOLDER", default=list(_MAIN_FOLDERS),
+                     help="results folders to reproduce: names under --results, or paths")
+    rep.add_argument("--results", default="results", help="folder with one sub-folder per study")
+    rep.add_argument("--rtol", type=float, default=1e-6, help="relative tolerance of every numeric column")
+    rep.add_argument("--atol", type=float, default=1e-9, help="absolute tolerance of every numeric column")
+    rep.add_argument("--keep", default=argparse.SUPPRESS, metavar="DIR",
+                     help="write the reruns under DIR and keep them (default: a temporary folder, removed "
+                          "after the comparison)")
     chk = sub.add_parser("check-results", help="say which committed results are stale",
                          formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     chk.add_argument("--results", default="results", help="folder with one sub-folder per study")
@@ -327,8 +373,60 @@ def _help_shows_defaults(prog):
         sys.argv[0] = argv0
 
 
+def _snapshot(folders, into):
+    """Copy the tables and text files of each existing folder in ``folders`` under ``into``.
+
+    Returns ``{folder: copy}`` for the folders that held any, so that what a run
+    replaces can be compared with what it wrote.
+    """
+    copies = {}
+    for k, folder in enumerate(folders):
+        files = sorted({p for pattern in _COMPARED for p in folder.glob(pattern) if p.is_file()}) \
+            if folder.is_dir() else []
+        if files:
+            copy = Path(into) / f"{k}_{folder.name}"
+            copy.mkdir(parents=True)
+            for path in files:
+                shutil.copy2(path, copy / path.name)
+            copies[folder] = copy
+    return copies
+
+
+def _study_tolerances(module):
+    """A study's per-column tolerances, ``RESULT_TOLERANCES`` (none if it states none)."""
+    return dict(getattr(module, "RESULT_TOLERANCES", None) or {})
+
+
+def _print_replaced(copies, module):
+    """How each folder a run wrote compares with the files it replaced (a report only)."""
+    if not copies:
+        return
+    from aircraft.result_comparison import compare_folders
+    for folder, copy in copies.items():
+        if not folder.is_dir():
+            continue
+        try:
+            result = compare_folders(copy, folder, tolerances=_study_tolerances(module))
+        except (OSError, ValueError) as exc:      # the comparison informs; it never fails a run
+            print(f"\n[rotorwake] {folder}: not compared with the files this run replaced ({exc})")
+            continue
+        print(f"\n[rotorwake] {folder}: compared with the files this run replaced")
+        print(result.report(max_rows=10), flush=True)
+
+
+def _out_under(study, root):
+    """The ``--out`` value that puts ``study``'s folders under the results root ``root``."""
+    return str(root) if study.default_out == "results" else str(Path(root) / Path(study.default_out).name)
+
+
 def run_study(name, argv, *, stream=sys.stderr):
     """Run one study through its ``main`` and write the manifests of its folders.
+
+    Where a folder it writes existed before, its tables and text files are copied
+    aside first and, after the run, compared with what the run wrote
+    (:func:`aircraft.result_comparison.compare_folders`, with the study's
+    ``RESULT_TOLERANCES``); the report is printed under "compared with the files
+    this run replaced". It never changes the outcome of the run.
 
     Parameters
     ----------
@@ -353,6 +451,18 @@ def run_study(name, argv, *, stream=sys.stderr):
     if asks_help:
         print(f"rotorwake {name}: {study.summary}\n  {_minutes(minutes)} on 2 cores; writes "
               + ", ".join(str(f) for f in folders) + " with manifest.json\n")
+    before = tempfile.mkdtemp(prefix="rotorwake-replaced-")
+    try:
+        copies = {} if asks_help else _snapshot(folders, before)
+        module, wall = _run_and_record(name, study, argv, folders, asks_help)
+        _print_replaced(copies, module)
+    finally:
+        shutil.rmtree(before, ignore_errors=True)
+    return wall
+
+
+def _run_and_record(name, study, argv, folders, asks_help):
+    """Run the study's ``main`` and write the manifests: (study module, wall time [s])."""
     t0 = time.perf_counter()
     loaded_before = set(sys.modules)
     module = importlib.import_module(study.module)
@@ -381,7 +491,7 @@ def run_study(name, argv, *, stream=sys.stderr):
         if folder.is_dir():
             write_manifest(folder, command=f"rotorwake {name} " + " ".join(argv), settings=settings,
                            wall_time_s=wall, sources=sources)
-    return wall
+    return module, wall
 
 
 def _check(results):
@@ -393,6 +503,8 @@ def _check(results):
     import pandas as pd
     with pd.option_context("display.max_colwidth", 90, "display.width", 200):
         print(table.to_string(index=False))
+    print("(versions: the numerical packages of each run against those installed now; reported only, "
+          "a difference does not make a folder stale)")
     bad = table[table.status != "fresh"]
     if len(bad):
         print(f"\n{len(bad)} of {len(table)} results folders are not fresh: run `make results` "
@@ -424,6 +536,8 @@ def main(argv=None):
         _parser().error(f"unrecognised arguments: {' '.join(rest)}")
     if args.command == "shipped-models":
         return _shipped_models(args)
+    if args.command == "reproduce":
+        return _reproduce(args)
     if args.command == "check-results":
         if args.upgrade:
             from aircraft.provenance import upgrade_manifests
@@ -470,8 +584,7 @@ def committed_options(name, results="results"):
     """
     from aircraft.provenance import ResultsManifestError, read_manifest
     study = STUDIES[name]
-    out = results if study.default_out == "results" else str(Path(results) / Path(study.default_out).name)
-    folder = Path(study.outputs[0].format(out=out))
+    folder = Path(study.outputs[0].format(out=_out_under(study, results)))
     try:
         options = read_manifest(folder)["settings"]["options"]
     except (ResultsManifestError, KeyError, TypeError):
@@ -479,6 +592,92 @@ def committed_options(name, results="results"):
     if not (isinstance(options, list) and all(isinstance(o, str) for o in options)):
         return []
     return list(options)
+
+
+def _rerun_of(reference):
+    """``((command, options), None)`` of the run that wrote folder ``reference``, or
+    ``(None, why not)``."""
+    from aircraft.provenance import ResultsManifestError, read_manifest
+    try:
+        manifest = read_manifest(reference)
+    except ResultsManifestError as exc:
+        return None, str(exc)
+    settings = manifest.get("settings") or {}
+    command, options = settings.get("command"), settings.get("options", [])
+    if command not in STUDIES:
+        return None, (f"{reference} was not written by a rotorwake study (its manifest records "
+                      f"{manifest.get('command')!r}); rerun it as that says")
+    if not (isinstance(options, list) and all(isinstance(o, str) for o in options)):
+        return None, f"{reference}/manifest.json records no readable options: {options!r}"
+    planned = sorted(f.name for f in _plan(STUDIES[command], options)[1])
+    if reference.name not in planned:
+        return None, (f"{reference}: `rotorwake {command} {' '.join(options)}` writes "
+                      f"{', '.join(planned)}, not {reference.name}")
+    return (command, tuple(options)), None
+
+
+def _inside(path, folder):
+    path, folder = Path(path).resolve(), Path(folder).resolve()
+    return path == folder or folder in path.parents
+
+
+def _reproduce(args):
+    """``rotorwake reproduce``: rerun the study of each folder and compare it with the rerun."""
+    from aircraft.result_comparison import Tolerance, compare_folders
+    try:
+        default = Tolerance(args.rtol, args.atol)
+    except ValueError as exc:
+        _parser().error(str(exc))
+    runs, problems = {}, []
+    for name in dict.fromkeys(args.folders):
+        reference = Path(args.results) / name
+        reference = reference if reference.is_dir() else Path(name)
+        if not reference.is_dir():
+            problems.append(f"no results folder {name!r} under {args.results}/ (nor at that path)")
+            continue
+        run, why = _rerun_of(reference)
+        if why:
+            problems.append(why)
+        else:
+            runs.setdefault(run, []).append(reference)
+    if problems:
+        print("rotorwake reproduce: " + "\n  ".join(problems), file=sys.stderr)
+        return 2
+    keep = getattr(args, "keep", None)
+    committed = {Path(args.results)} | {ref.parent for refs in runs.values() for ref in refs}
+    if keep and any(_inside(keep, folder) for folder in committed):
+        _parser().error(f"--keep {keep} lies inside the committed results: reproduce never writes there")
+    root = Path(keep) if keep else Path(tempfile.mkdtemp(prefix="rotorwake-reproduce-"))
+    minutes = sum(_plan(STUDIES[command], list(options))[0] for command, options in runs)
+    print("[rotorwake] reproduce: " + ", ".join(f"rotorwake {c} {' '.join(o)}".strip() for c, o in runs)
+          + f" into {root} ({_minutes(minutes)} on 2 cores)", file=sys.stderr, flush=True)
+    failed = []
+    try:
+        for (command, options), references in runs.items():
+            study = STUDIES[command]
+            argv = list(options) + ["--out", _out_under(study, root)]
+            run_study(command, argv)
+            reruns = {f.name: f for f in _plan(study, argv)[1]}
+            tolerances = _study_tolerances(sys.modules[study.module])
+            for reference in references:
+                rerun = reruns[reference.name]
+                print(f"\n[rotorwake] reproduce {reference}: against a rerun of "
+                      f"`{' '.join(['rotorwake', command, *options])}`")
+                if not rerun.is_dir():
+                    print(f"the rerun wrote no folder {rerun}")
+                    failed.append(str(reference))
+                    continue
+                result = compare_folders(reference, rerun, tolerances=tolerances, default=default)
+                print(result.report(max_rows=20), flush=True)
+                if not result.passes:
+                    failed.append(str(reference))
+    finally:
+        if not keep:
+            shutil.rmtree(root, ignore_errors=True)
+    done = sum(len(refs) for refs in runs.values())
+    print(f"\n[rotorwake] reproduce: {done - len(failed)} of {done} folder(s) reproduced within tolerance"
+          + (f"; moved or missing in: {', '.join(failed)}" if failed else ""))
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":
