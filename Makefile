@@ -6,6 +6,8 @@
 #   make results        regenerate every committed results/ folder with its recorded options (~1 h warm cache)
 #   make check-results  say which committed results the current code no longer produces
 #   make docs           the Sphinx site in docs/_build/html (warnings are errors)
+#   make test-quick     the tests not marked slow (under 2 min on 2 cores): a developer's inner loop
+#   make reproduce      rerun the main job into a temporary folder and compare it with the committed tables
 #   make test-latest    the test suite against the newest releases, unpinned, in a fresh .venv-latest
 #   make lock           re-resolve the newest releases into constraints.txt (a deliberate upgrade)
 PYTHON ?= python3
@@ -41,7 +43,7 @@ define LOCK_HEADER
 endef
 export LOCK_HEADER
 
-.PHONY: study test test-latest lock bench results check-results docs clean
+.PHONY: study test test-quick test-latest lock bench results check-results reproduce docs clean
 
 # a venv that also holds the docs extra gets it re-pinned too: the test that the environment is the
 # pinned one looks at every pinned distribution installed, so stale docs versions would fail make test
@@ -62,6 +64,10 @@ study: $(STAMP)
 
 test: $(STAMP)
 	$(TEST_ENV) $(PY) $(TEST_ARGS)
+
+# the tests marked slow (each over about 3 s: designs, end-to-end studies, wake runs) left out
+test-quick: $(STAMP)
+	$(TEST_ENV) $(PY) $(TEST_ARGS) -m "not slow"
 
 # what a user who upgrades would meet: a venv made afresh each time (so it really holds the newest
 # releases), no constraints; it lists the versions that differ from the pins, then runs the same
@@ -98,6 +104,9 @@ bench: $(STAMP)
 
 results: $(STAMP)
 	MPLBACKEND=Agg $(PY) -m studies.cli results
+
+reproduce: $(STAMP)
+	MPLBACKEND=Agg $(PY) -m studies.cli reproduce
 
 check-results: $(STAMP)
 	$(PY) -m studies.cli check-results

@@ -16,19 +16,19 @@ Every results folder written through the ``rotorwake`` command line carries a
 * ``settings`` and ``settings_hash``: the command and its explicit options;
 * ``date`` (UTC, ISO 8601), ``wall_time_s`` [s], ``machine`` (cores, platform,
   Python / numpy / numba versions, ``versions``: those of every numerical package
-  (:func:`numerical_versions`) and the BLAS kernel family in use, and the Biot-Savart ``kernel_backend`` the wake
+  and the BLAS kernel family in use (:func:`numerical_environment`), and the Biot-Savart ``kernel_backend`` the wake
   runs used: a module of :data:`BACKEND_CODE`, the GPU kernel, can only have
   computed a folder's numbers if its run used that backend);
 * ``files``: the SHA-256 of every file in the folder but its hand-written description
   (:data:`RESULTS_DESCRIPTION`).
 
-:func:`check_results` re-hashes those modules and files: a folder is *stale*
+:func:`aircraft.provenance_check.check_results` re-hashes those modules and files: a folder is *stale*
 when the code of a module it was computed with has changed since (its bytes differ
 and so does its code digest), and *modified* when one of its files no longer
 matches the manifest; its ``versions`` column says whether the numerical packages
 differ from those of the run (reported only: a version does not make a folder stale).
 A schema-1 manifest (bytes only) is checked on bytes;
-:func:`upgrade_manifests` adds the code digests to those whose modules are still
+:func:`~aircraft.provenance_check.upgrade_manifests` adds the code digests to those whose modules are still
 byte-identical, which is the only case where the digests are known to describe the
 code that ran. ``rotorwake check-results`` (and
 ``make check-results``) prints that table and fails when anything is not fresh.
@@ -51,8 +51,7 @@ from pathlib import Path
 
 __all__ = ["MANIFEST_NAME", "PROJECT_PACKAGES", "BACKEND_CODE", "ResultsManifestError", "code_version",
            "settings_hash", "jsonable", "HASHED_IF_SET", "identity_repr", "identity_dict", "file_sha256", "code_digest", "imported_sources", "import_closure", "write_manifest",
-           "read_manifest",
-           "check_results", "numerical_versions", "upgrade_manifests", "record_kernel_backend"]
+           "read_manifest", "numerical_versions", "numerical_environment"]
 
 #: File name of the manifest in each results folder.
 MANIFEST_NAME = "manifest.json"
@@ -61,7 +60,8 @@ RESULTS_DESCRIPTION = "README.md"
 #: Packages whose imported modules are recorded (the project's own code).
 PROJECT_PACKAGES = ("flightid", "aircraft", "controllers", "studies")
 # bookkeeping modules that cannot change a number: not recorded
-_NOT_RESULTS_CODE = ("aircraft/provenance.py", "studies/cli.py", "aircraft/result_comparison.py")
+_NOT_RESULTS_CODE = ("aircraft/provenance.py", "aircraft/provenance_check.py", "studies/cli.py",
+                     "aircraft/result_comparison.py")
 # distributions whose version can move a computed number, in the order reported
 _NUMERICAL_PACKAGES = ("numpy", "scipy", "control", "casadi", "numba", "slycot", "pandas", "matplotlib")
 #: Modules that compute numbers only on one Biot-Savart kernel backend: ``{path:
@@ -551,34 +551,30 @@ def numerical_versions():
     return found
 
 
-def _blas_kernels():
-    """The BLAS libraries loaded in this process and the kernel family each uses, e.g.
-    ``"openblas 0.3.30 Haswell"``: sums round differently from one family to another, so a
-    number computed with another can differ in its last digits (and an optimiser's path more)."""
+def numerical_environment():
+    """:func:`numerical_versions` and the BLAS kernels in use: what a manifest records.
+
+    Sums round differently from one BLAS kernel family to another (AVX-512, AVX2,
+    ...), so a number computed with another can differ in its last digits, and an
+    optimiser's path more. numpy is imported to read which kernels its BLAS loaded.
+
+    Returns
+    -------
+    dict
+        :func:`numerical_versions` plus ``"blas"``: each BLAS library loaded and its
+        kernel family, e.g. ``"openblas 0.3.30 Haswell"`` (None when none is found).
+
+    Examples
+    --------
+    >>> env = numerical_environment()
+    >>> list(env)[-1], env["numpy"] == numerical_versions()["numpy"]
+    ('blas', True)
+    """
     import numpy  # noqa: F401  (loads numpy's BLAS, whose kernels are the ones recorded)
     from threadpoolctl import threadpool_info
     found = {f"{i.get('internal_api')} {i.get('version')} {i.get('architecture')}"
              for i in threadpool_info() if i.get("user_api") == "blas"}
-    return ", ".join(sorted(found)) or None
-
-
-def _versions_note(machine, now):
-    """``versions`` column of :func:`check_results`: the run's versions (``machine``
-    of its manifest) against ``now``; the older top-level python/numpy/numba count."""
-    recorded = {k: machine[k] for k in ("python", "numpy", "numba") if k in machine}
-    recorded.update(machine.get("versions") or {})
-    known = [k for k in now if k in recorded]
-    differs = [f"{k} {recorded[k] or 'not installed'} (now {now[k] or 'not installed'})"
-               for k in known if recorded[k] != now[k]]
-    same = [k for k in known if recorded[k] == now[k]]
-    missing = [k for k in now if k not in recorded]
-    if not missing:
-        return "differs: " + ", ".join(differs) if differs else "same"
-    if not known:
-        return "not recorded"
-    inner = "; ".join(([f"differs: {', '.join(differs)}"] if differs else [])
-                      + ([f"{', '.join(same)} same"] if same else []))
-    return f"partly recorded ({inner}); not recorded: {', '.join(missing)}"
+    return {**numerical_versions(), "blas": ", ".join(sorted(found)) or None}
 
 
 def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources=None):
@@ -612,7 +608,7 @@ def write_manifest(folder, *, command, settings, wall_time_s, root=None, sources
     folder = Path(folder)
     if not folder.is_dir():
         raise FileNotFoundError(f"results folder {folder} does not exist")
-    versions = {**numerical_versions(), "blas": _blas_kernels()}
+    versions = numerical_environment()
     files = {p.name: file_sha256(p) for p in sorted(folder.iterdir())
              if p.is_file() and p.name not in (MANIFEST_NAME, RESULTS_DESCRIPTION)}
     root_path = Path(root) if root is not None else _project_root()
@@ -668,167 +664,3 @@ def read_manifest(folder):
                                    f"{_READABLE_SCHEMAS}")
     return manifest
 
-
-def check_results(results_root="results", root=None):
-    """Say, folder by folder, whether committed results are what the code gives now.
-
-    Parameters
-    ----------
-    results_root : str or pathlib.Path
-        Folder holding one sub-folder per study.
-    root : str or pathlib.Path, optional
-        Project root the manifests' module paths are relative to.
-
-    Returns
-    -------
-    pandas.DataFrame
-        One row per results folder: ``folder``, ``status`` (``"fresh"``,
-        ``"stale"``: a module it was computed with changed or is gone,
-        ``"modified"``: a file differs from the manifest, ``"no manifest"``),
-        ``date`` of the run, ``detail`` (which modules or files) and ``versions``
-        (``"same"``, ``"differs: scipy 1.16.0 (now 1.17.1)"``, or ``"partly
-        recorded (...); not recorded: ..."`` for an older manifest): the
-        numerical packages of the run against :func:`numerical_versions` now. A
-        version difference is reported, it does not make a folder stale.
-    """
-    import pandas as pd
-    root = Path(root) if root is not None else _project_root()
-    rows, now = [], {**numerical_versions(), "blas": _blas_kernels()}
-    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
-        try:
-            manifest = read_manifest(folder)
-        except ResultsManifestError as exc:
-            rows.append({"folder": folder.name, "status": "no manifest", "date": None, "detail": str(exc),
-                         "versions": None})
-            continue
-        changed, documentation = _changed_sources(manifest, root)
-        edited = [name for name, digest in manifest["files"].items()
-                  if not (folder / name).is_file() or file_sha256(folder / name) != digest]
-        extra = sorted(p.name for p in folder.iterdir()
-                       if p.is_file() and p.name not in (MANIFEST_NAME, RESULTS_DESCRIPTION)
-                       and p.name not in manifest["files"])
-        if changed:
-            status, detail = "stale", "code changed since the run: " + ", ".join(changed)
-        elif edited or extra:
-            status, detail = "modified", "files differ from the manifest: " + ", ".join(edited + extra)
-        else:
-            status, detail = "fresh", f"{manifest['command']} ({manifest['code']['git']})"
-            if documentation:
-                detail += "; documentation only changed since in: " + ", ".join(documentation)
-        rows.append({"folder": folder.name, "status": status, "date": manifest["date"], "detail": detail,
-                     "versions": _versions_note(manifest.get("machine", {}), now)})
-    return pd.DataFrame(rows, columns=["folder", "status", "date", "detail", "versions"])
-
-
-def _changed_sources(manifest, root):
-    """(modules whose code changed, modules whose bytes changed but code did not)."""
-    digests = manifest.get("code_digests", {})
-    backend = manifest.get("machine", {}).get("kernel_backend")
-    changed, documentation = [], []
-    for rel, digest in manifest["sources"].items():
-        if backend is not None and rel in BACKEND_CODE and BACKEND_CODE[rel] != backend:
-            continue      # code of a backend the run did not use: it computed nothing here
-        path = root / rel
-        if not path.is_file():
-            changed.append(rel)
-        elif file_sha256(path) != digest:
-            try:
-                same_code = rel in digests and code_digest(path) == digests[rel]
-            except SyntaxError:
-                same_code = False
-            (documentation if same_code else changed).append(rel)
-    return changed, documentation
-
-
-def _readable_manifests(results_root):
-    """(folder, manifest) of each results folder whose manifest reads (others are skipped)."""
-    for folder in sorted(p for p in Path(results_root).iterdir() if p.is_dir()):
-        try:
-            yield folder, read_manifest(folder)
-        except ResultsManifestError:
-            continue
-
-
-def upgrade_manifests(results_root="results", root=None):
-    """Add code digests to the schema-1 manifests whose modules are byte-identical now.
-
-    A schema-1 manifest records only the bytes of each module. Where every module
-    it lists still has those bytes, the code that ran is the code on disk, so its
-    :func:`code_digest` can be recorded honestly; the manifest is rewritten as
-    schema 2 (nothing else in it changes). Any other folder is left as it is.
-
-    Parameters
-    ----------
-    results_root : str or pathlib.Path
-        Folder holding one sub-folder per study.
-    root : str or pathlib.Path, optional
-        Project root the manifests' module paths are relative to.
-
-    Returns
-    -------
-    list of str
-        Names of the folders upgraded.
-    """
-    root = Path(root) if root is not None else _project_root()
-    upgraded = []
-    for folder, manifest in _readable_manifests(results_root):
-        if manifest["schema"] != 1:
-            continue
-        if any(not (root / rel).is_file() or file_sha256(root / rel) != digest
-               for rel, digest in manifest["sources"].items()):
-            continue
-        manifest["schema"] = _SCHEMA
-        upgraded_manifest = {}
-        for key, value in manifest.items():
-            upgraded_manifest[key] = value
-            if key == "sources":
-                upgraded_manifest["code_digests"] = _code_digests(value, root)
-        (folder / MANIFEST_NAME).write_text(json.dumps(upgraded_manifest, indent=2, sort_keys=False) + "\n")
-        upgraded.append(folder.name)
-    return upgraded
-
-
-def record_kernel_backend(results_root="results", backend="cpu", root=None):
-    """Say which kernel backend the runs of older manifests used, where it is known.
-
-    Manifests written before ``machine["kernel_backend"]`` existed do not say, so
-    :func:`check_results` counts every module for them, the GPU kernel's too. Who
-    knows where they were computed can record it here: it is an attestation, not
-    a measurement, so it is never done implicitly. Only folders that are not stale
-    but for modules of :data:`BACKEND_CODE` of another backend are marked (a
-    folder that is stale for any other reason stays as it is), and only the
-    ``machine`` entry changes.
-
-    Parameters
-    ----------
-    results_root : str or pathlib.Path
-        Folder holding one sub-folder per study.
-    backend : {"cpu", "gpu"}
-        The backend the runs used.
-    root : str or pathlib.Path, optional
-        Project root the manifests' module paths are relative to.
-
-    Returns
-    -------
-    list of str
-        Names of the folders marked.
-
-    Raises
-    ------
-    ValueError
-        For a backend other than ``"cpu"`` or ``"gpu"``.
-    """
-    if backend not in ("cpu", "gpu"):
-        raise ValueError(f"backend must be 'cpu' or 'gpu', got {backend!r}")
-    root = Path(root) if root is not None else _project_root()
-    marked = []
-    for folder, manifest in _readable_manifests(results_root):
-        if "kernel_backend" in manifest.get("machine", {}):
-            continue
-        attested = {**manifest, "machine": {**manifest.get("machine", {}), "kernel_backend": backend}}
-        changed, _ = _changed_sources(attested, root)
-        if changed:
-            continue
-        (folder / MANIFEST_NAME).write_text(json.dumps(attested, indent=2, sort_keys=False) + "\n")
-        marked.append(folder.name)
-    return marked

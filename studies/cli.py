@@ -260,7 +260,7 @@ def _parser():
     chk.add_argument("--record-kernel-backend", choices=("cpu", "gpu"), default=None,
                      help="first record, in manifests that do not say, which Biot-Savart backend their runs "
                           "used (an attestation by whoever knows where they ran; see "
-                          "aircraft.provenance.record_kernel_backend)")
+                          "aircraft.provenance_check.record_kernel_backend)")
     shp = sub.add_parser("shipped-models", help="list, check (--check) or regenerate the identified models "
                                                  "shipped in aircraft/data/models",
                          formatter_class=argparse.ArgumentDefaultsHelpFormatter)
@@ -278,6 +278,7 @@ def _shipped_models(args):
     """``rotorwake shipped-models``: list, check or regenerate the shipped model files."""
     from aircraft.identification import shipped
     from aircraft.inflow.model_files import shipped_model_path, shipped_models
+    from aircraft.provenance_check import record_environment
     if args.list:
         print("recipes:", ", ".join(sorted(shipped.RECIPES)))
         print("published:", ", ".join(sorted(shipped.PUBLISHED_FILES)))
@@ -287,6 +288,9 @@ def _shipped_models(args):
         stale = shipped.stale_models()
         print("stale:" if stale else "all shipped models match their recipes and the code",
               *(f"{k}: {'; '.join(reasons)}" for k, reasons in stale.items()), sep="\n  ")
+        from aircraft.provenance_check import environment_note
+        print("environment of each file's run against this one (reported only):",
+              *(f"{k}: {environment_note(shipped_model_path(k))}" for k in shipped_models()), sep="\n  ")
         status = 1 if stale else 0
     names = list(args.names) + (sorted(shipped.PUBLISHED_FILES) if args.published else [])
     t_all = time.perf_counter()
@@ -294,6 +298,9 @@ def _shipped_models(args):
         print(f"[{k}/{len(names)}] {name}: regenerating ...", flush=True)
         t0 = time.perf_counter()
         out = shipped.regenerate(name, n_jobs=args.jobs, cache_dir=args.cache)
+        # the library's writer is part of every model's code digest: recorded here until it next changes
+        if shipped_model_path(name).is_file():
+            record_environment(shipped_model_path(name))
         if hasattr(out, "summary"):
             print(out.summary())
         print(f"[{k}/{len(names)}] wrote {shipped_model_path(name)} in {time.perf_counter() - t0:.1f} s",
@@ -495,7 +502,7 @@ def _run_and_record(name, study, argv, folders, asks_help):
 
 
 def _check(results):
-    from aircraft.provenance import check_results
+    from aircraft.provenance_check import check_results
     table = check_results(results)
     if table.empty:
         print(f"no results folders under {results}/")
@@ -540,11 +547,11 @@ def main(argv=None):
         return _reproduce(args)
     if args.command == "check-results":
         if args.upgrade:
-            from aircraft.provenance import upgrade_manifests
+            from aircraft.provenance_check import upgrade_manifests
             upgraded = upgrade_manifests(args.results)
             print(f"upgraded {len(upgraded)} manifest(s) to code digests: {', '.join(upgraded) or 'none'}")
         if args.record_kernel_backend:
-            from aircraft.provenance import record_kernel_backend
+            from aircraft.provenance_check import record_kernel_backend
             marked = record_kernel_backend(args.results, args.record_kernel_backend)
             print(f"recorded kernel backend {args.record_kernel_backend!r} in {len(marked)} manifest(s): "
                   f"{', '.join(marked) or 'none'}")
@@ -552,7 +559,7 @@ def main(argv=None):
     # results: regenerate every committed folder with the options it was computed with
     names = args.only or [n for n, s in STUDIES.items() if s.in_results]
     if args.stale:
-        from aircraft.provenance import check_results
+        from aircraft.provenance_check import check_results
         table = check_results("results")
         stale = {row.folder for row in table.itertuples() if row.status != "fresh"}
         names = [n for n in names if any(f.name in stale for f in _plan(STUDIES[n], [])[1])]

@@ -156,6 +156,7 @@ def _edge_lines(edges):
     return sorted(f"{a} -> {b}" + (" (lazy)" if lazy else "") for (a, b), lazy in edges.items())
 
 
+@pytest.mark.slow
 def test_page_states_the_unit_import_graph():
     graph, _ = module_graph()
     expected = _edge_lines(unit_edges(graph))
@@ -164,6 +165,7 @@ def test_page_states_the_unit_import_graph():
         + "\n".join("   " + line for line in expected))
 
 
+@pytest.mark.slow
 def test_no_module_circle_even_through_lazy_imports():
     graph, mods = module_graph()
     found = [" <-> ".join(c) for c in module_circles(graph, mods)]
@@ -177,6 +179,7 @@ LAYERS = {"flightid": 0, "aircraft._validation": 1, "aircraft.provenance": 1, "a
           "aircraft.identification": 5, "aircraft": 6, "studies": 7}
 
 
+@pytest.mark.slow
 def test_no_arrow_runs_up_the_layers():
     graph, _ = module_graph()
     assert set(LAYERS) == set(UNITS)
@@ -184,6 +187,7 @@ def test_no_arrow_runs_up_the_layers():
     assert upward == [], "imports against the layers (lazy ones included):\n" + "\n".join(upward)
 
 
+@pytest.mark.slow
 def test_controllers_need_no_aircraft_at_all():
     graph, _ = module_graph()
     found = sorted(b for (a, b) in unit_edges(graph) if a == "controllers" and b.startswith("aircraft"))
@@ -236,6 +240,7 @@ def test_tests_and_benchmarks_never_import_studies():
     assert found == []
 
 
+@pytest.mark.slow
 def test_no_circle_at_import_time():
     graph, mods = module_graph()
     assert module_circles(graph, mods, lazy=False) == []
@@ -246,6 +251,7 @@ def test_no_circle_at_import_time():
     assert circles(eager) == []
 
 
+@pytest.mark.slow
 def test_the_checker_finds_circles_and_units():
     assert circles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert circles({"a": {"b"}, "b": set()}) == []

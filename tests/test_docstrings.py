@@ -211,6 +211,7 @@ def _docstrings_and_comments(path):
     return found
 
 
+@pytest.mark.slow
 def test_library_text_carries_no_issue_numbers_and_no_readme_pointers():
     """Docstrings and comments say what they mean: no "issue 9, item 1", no "session 9", no "see README".
 

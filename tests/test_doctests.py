@@ -52,9 +52,15 @@ def _doctests():
 
 
 DOCTESTS = sorted(_doctests(), key=lambda t: t.name)
+#: examples that run a design (several seconds each): left out of the quick set (make test-quick)
+SLOW_EXAMPLES = {"controllers.dmo.dmo", "controllers.multi_axis_design.design_multi_axis",
+                 "controllers.multi_axis_joint.joint_check", "controllers.multi_axis_report.multi_axis_summary",
+                 "controllers.multi_axis_report.multi_axis_tables", "controllers.multi_axis_report.limits_table",
+                 "controllers.multi_axis_report.write_multi_axis_report"}
 
 
-@pytest.mark.parametrize("test", DOCTESTS, ids=[t.name for t in DOCTESTS])
+@pytest.mark.parametrize("test", [pytest.param(t, marks=pytest.mark.slow) if t.name in SLOW_EXAMPLES else t
+                                  for t in DOCTESTS], ids=[t.name for t in DOCTESTS])
 def test_docstring_example_runs(test):
     report = []
     runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)

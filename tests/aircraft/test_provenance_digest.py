@@ -4,7 +4,8 @@ import json
 
 import pytest
 
-from aircraft.provenance import check_results, code_digest, file_sha256, upgrade_manifests, write_manifest
+from aircraft.provenance import code_digest, file_sha256, write_manifest
+from aircraft.provenance_check import check_results, upgrade_manifests
 
 MODULE = '''"""Module docstring."""
 # a comment
@@ -177,7 +178,7 @@ def test_write_manifest_records_the_kernel_backend(tmp_path):
 
 
 def test_record_kernel_backend_is_explicit_and_only_where_it_makes_a_folder_fresh(gpu_project):
-    from aircraft.provenance import record_kernel_backend
+    from aircraft.provenance_check import record_kernel_backend
     root, gpu_rel, folder = gpu_project
     _set_backend(folder, None)                               # an older manifest: says nothing
     (root / gpu_rel).write_text(MODULE.replace("return 2 * x", "return 3 * x"))

@@ -3,7 +3,8 @@
 import json
 import platform
 
-from aircraft.provenance import _blas_kernels, _versions_note, check_results, numerical_versions, write_manifest
+from aircraft.provenance import numerical_environment, numerical_versions, write_manifest
+from aircraft.provenance_check import _versions_note, check_results
 
 NOW = {"python": "3.11.7", "numpy": "2.4.6", "scipy": "1.17.1", "control": "0.10.2", "casadi": "3.8.2",
        "numba": "0.68.1", "slycot": "0.7.1", "pandas": "3.1.2", "matplotlib": "3.11.2"}
@@ -40,7 +41,7 @@ def test_a_manifest_records_the_versions_and_a_difference_leaves_the_folder_fres
     manifest = json.loads(path.read_text())
     machine = manifest["machine"]
     # and the BLAS kernel family, whose round-off differs from one family to the next
-    assert machine["versions"] == {**numerical_versions(), "blas": _blas_kernels()}
+    assert machine["versions"] == numerical_environment()
     assert (machine["python"], machine["numpy"], machine["numba"]) == tuple(
         machine["versions"][k] for k in ("python", "numpy", "numba"))          # kept for older readers
     table = check_results(tmp_path / "results", root=tmp_path)
@@ -50,3 +51,25 @@ def test_a_manifest_records_the_versions_and_a_difference_leaves_the_folder_fres
     table = check_results(tmp_path / "results", root=tmp_path)
     assert table.status.tolist() == ["fresh"]
     assert table.versions[0].startswith("differs: scipy 0.1.0 (now ")
+
+
+def test_a_model_file_records_its_environment_and_still_loads(tmp_path):
+    from aircraft.inflow.model_files import load_record, shipped_model_path
+    from aircraft.provenance_check import environment_note, record_environment
+    path = tmp_path / "model.json"
+    path.write_text(shipped_model_path("published_eq5_3").read_text())
+    assert environment_note(path) == "not recorded"
+    before = load_record(path)
+    env = record_environment(path)
+    assert env == numerical_environment() and environment_note(path) == "same"
+    after = load_record(path)
+    # only the provenance gained an entry: matrices, hashes and code digests are untouched
+    assert after.provenance["environment"] == env
+    assert {k: v for k, v in after.provenance.items() if k != "environment"} == before.provenance
+    assert after.settings_hash == before.settings_hash and after.code_digest == before.code_digest
+    for key in before.matrices:
+        assert (after.matrices[key] == before.matrices[key]).all()
+    data = json.loads(path.read_text())
+    data["provenance"]["environment"]["scipy"] = "0.1.0"
+    path.write_text(json.dumps(data))
+    assert environment_note(path).startswith("differs: scipy 0.1.0 (now ")

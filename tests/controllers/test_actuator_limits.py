@@ -113,6 +113,7 @@ def test_a_tight_rate_limit_holds_the_crossover_down():
     assert "OlpOpG1.pilot" in t_held.limiting
 
 
+@pytest.mark.slow
 def test_global_search_finds_the_closed_form_optimum_and_not_beyond():
     # rate plant 1/s, no actuator or sensor lag: L = (K_p s + K_phi + K_Iphi/s) / s^2. With K_p, K_phi <= 1
     # the crossover is largest at K_p = K_phi = 1, K_Iphi -> 0: w^4 = w^2 + 1, w = sqrt(golden ratio)
@@ -131,6 +132,7 @@ def test_global_search_finds_the_closed_form_optimum_and_not_beyond():
     assert (res.points.penalty[~res.points.feasible] >= 1.0).all()
 
 
+@pytest.mark.slow
 def test_global_check_beats_a_dmo_held_to_one_step_and_its_gains_meet_the_specs():
     from controllers.multi_axis_check import global_check
     from controllers.multi_axis_design import axis_specs

@@ -81,6 +81,7 @@ def test_unstable_loop_reads_frequency_specs_not_applicable_never_met(design):
         assert not table.loc[name, "met"] and table.loc[name, "status"] == UNSTABLE_NOTE
 
 
+@pytest.mark.slow
 def test_dmo_on_a_plant_where_nothing_is_feasible_raises_naming_the_unmet_specs(design):
     # DRB >= 20 rad/s is out of reach: the closest candidates are unstable loops, so
     # the error names the instability (frequency-domain specs are n/a there, not met)

@@ -124,6 +124,7 @@ def test_dmo_reaches_the_best_crossover_of_an_independent_search(name):
         assert bad.crossover_min.min() / result.crossover_boundary - 1 <= result.tolerance * 1.01
 
 
+@pytest.mark.slow
 def test_slow_rhp_zero_has_no_design_and_both_say_so():
     """A right-half-plane zero at 0.05 rad/s traps a closed-loop pole of every design with
     attitude feedback: the search finds no feasible point and the DMO raises, naming specs."""
@@ -135,6 +136,7 @@ def test_slow_rhp_zero_has_no_design_and_both_say_so():
     assert err.value.unmet and "sampled gain sets" in str(err.value)
 
 
+@pytest.mark.slow
 def test_local_only_answer_is_labelled():
     design = _hand(hover_roll_plant())
     local = dmo(design, settings=DMOSettings(global_samples=0), progress=False)

@@ -53,6 +53,7 @@ def test_fast_closed_loop_poles_equal_the_interconnect_spectrum(design):
     assert max(np.min(np.abs(fast - f)) / max(1.0, abs(f)) for f in full) < 1e-8
 
 
+@pytest.mark.slow
 def test_robust_dmo_meets_every_spec_on_every_plant_and_costs_crossover(design):
     other = design.with_plant(hover_roll_plant(gain=4.0, roll_damping=1.8, flap_damping=0.2))
     settings = DMOSettings(tolerance=0.01)
@@ -104,6 +105,7 @@ def test_closed_loop_poles_drop_the_mode_phi_integrator_cancels_but_keep_instabi
     assert np.max(unstable.closed_loop_poles().real) > 0.01
 
 
+@pytest.mark.slow
 def test_dmo_does_not_depend_on_the_phase_branch_at_the_lowest_grid_frequency():
     # zeros at +0.02 and -0.01 rad/s below a lightly damped 0.23 rad/s mode (a free
     # aircraft in hover): the phase at 0.05 rad/s is about -173 deg, so unwrapping from

@@ -3,9 +3,11 @@
 Library calls only, on the Dynamic-Climb coaxial in hover (a shorter path than
 ``examples/aircraft_to_design.py``, which the tour runs in full).
 """
+import pytest
 import numpy as np
 
 
+@pytest.mark.slow
 def test_from_linearize_to_a_dmo_design():
     import controllers
     from aircraft import coaxial_compound

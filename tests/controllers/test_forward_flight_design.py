@@ -58,6 +58,7 @@ def _roll_plant():
                       inputs=["delta_lat"], outputs=["p", "phi"])
 
 
+@pytest.mark.slow
 def test_design_grades_the_regime_asked_for_and_hover_stays_the_default():
     fwd = design_multi_axis(_roll_plant(), axes=["roll"], settings=FAST, progress=False, speed="forward")
     hov = design_multi_axis(_roll_plant(), axes=["roll"], settings=FAST, progress=False)
@@ -68,6 +69,7 @@ def test_design_grades_the_regime_asked_for_and_hover_stays_the_default():
     assert "SpiralF.MIL-F-8785C" in set(fwd.specs["roll"].spec)
 
 
+@pytest.mark.slow
 def test_global_check_grades_the_specs_the_design_was_graded_on():
     from controllers.multi_axis_check import global_check
     fwd = design_multi_axis(_roll_plant(), axes=["roll"], settings=FAST, progress=False, speed="forward")
@@ -123,6 +125,7 @@ def _unstable_pitch(c=0.3):
     return control.ss(A, B, np.eye(4), 0, inputs=["delta_lat", "delta_lon"], outputs=["p", "phi", "q", "theta"])
 
 
+@pytest.mark.slow
 def test_start_closed_designs_an_axis_on_the_aircraft_its_partner_stabilises():
     plant = _unstable_pitch()
     # pitch alone at K_phi 0.3, K_p 0.5: s (s - 0.5) + 4 (0.5 s + 0.3) = s^2 + 1.5 s + 1.2, by hand stable and
@@ -137,6 +140,7 @@ def test_start_closed_designs_an_axis_on_the_aircraft_its_partner_stabilises():
     assert closed.dmo_results["roll"] is not None
 
 
+@pytest.mark.slow
 def test_global_check_at_another_mte_keeps_the_designs_regime_and_boundaries(monkeypatch):
     # global_check(..., mte=...) rebuilds each axis's specs: a forward-flight design must be
     # re-checked on the forward-flight charts, with the boundaries the design was given

@@ -156,6 +156,7 @@ def test_given_interconnections_are_used_as_given_and_checked():
         emf.with_interconnections(closed_loop=control.ss(cl.A, cl.B, cl.C, cl.D))
 
 
+@pytest.mark.slow
 def test_new_gains_keep_the_pilot_path_poles_and_match_a_fresh_build():
     emf = MultiAxisEMF(four_axis(), _four_loops())
     emf.closed_loop_poles()
@@ -215,6 +216,7 @@ def test_signal_name_errors_name_the_signal():
         emf.broken_loop("pitch")
 
 
+@pytest.mark.slow
 def test_decoupled_design_reproduces_the_single_axis_dmo():
     res = design_multi_axis(roll_pitch(0.0), axes=["roll", "pitch"], settings=FAST, progress=False,
                             actuator=first_order_actuator(30.0), crossover_start=START)
@@ -244,6 +246,7 @@ def test_decoupled_design_reproduces_the_single_axis_dmo():
         assert table.loc["EigLcG1", "value"] == pytest.approx(np.max(both.real), rel=1e-6)
 
 
+@pytest.mark.slow
 def test_coupled_design_reports_every_axis():
     res = design_multi_axis(roll_pitch(0.5), axes=["roll", "pitch"], settings=FAST, progress=False,
                             actuator=first_order_actuator(30.0), max_sweeps=2, crossover_start=START)

@@ -6,6 +6,7 @@ with ``coupling``. Coupling 2: roll tuned to its own highest crossover takes the
 margins below Level 1, so a design with Level 1 guards stops roll lower than its own specs allow.
 """
 import time
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -14,10 +15,13 @@ from controllers import DMOSettings, PIDGains, design_multi_axis
 from controllers.multi_axis_check import global_check
 from controllers.multi_axis_design import axis_specs
 from controllers.multi_axis_result import MultiAxisResult
-from controllers.multi_axis_guard import GUARDED_SPECS
+from controllers.multi_axis_guard import GUARD_TOLERANCE, GUARDED_SPECS
 from controllers.specs import evaluate_specs
 
 from .test_multi_axis_guard import _plant
+
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
 
 #: starting gains near the DMO's answer and a boundary raise from just below it: the DMO starts
 #: feasible and needs a few steps (7 s instead of 20 s from the default start); no ray sampling
@@ -89,11 +93,27 @@ def test_guarded_search_does_not_beat_the_guarded_design_and_keeps_the_margins(g
 
 def test_guards_cannot_bind_on_a_decoupled_plant():
     # no coupling: the pitch loop's margins do not depend on the roll gains, so the guards on it are
-    # constants at or above their boundaries and the two searches score the same feasible set
+    # constants above their boundaries and the two searches score the same feasible set
     quick = DMOSettings(global_samples=0, max_steps=1, polish_evaluations=0)
     res = design_multi_axis(_plant(0.0), axes=["pitch", "roll"], settings=quick, start_gains=START,
                             crossover_start={"pitch": 6.0, "roll": 6.0}, max_sweeps=1, progress=False,
                             guard_other_axes=True, guard_level=1, limits=None)
+    # the pitch loop flown at its hand-picked START gains, not the DMO's: the DMO's pitch design sits on
+    # its Nichols boundary (5e-4 above it, under the guard's 1e-3 tolerance), so that guard's floor would
+    # be the value now, met with no margin, and a last-bit difference between candidates would split
+    # the two searches
+    pitch = START["pitch"]
+    res = replace(res, emf=res.emf.with_gains({"pitch": pitch}),
+                  designs={**res.designs, "pitch": res.designs["pitch"].with_gains(pitch)})
+    specs = {s.name: s for s in res.spec_lists["pitch"]}
+    table = evaluate_specs(res.emf.axis_view("pitch"), [specs[n] for n in GUARDED_SPECS]).set_index("spec")
+    for name in GUARDED_SPECS:
+        # a guard's boundary is then Level 1 + its tolerance, met by 10 tolerances or more (each
+        # tolerance is already 10x the guard grid's error): far from round-off
+        floor = specs[name].level1 + GUARD_TOLERANCE[name]
+        assert table.loc[name, "value"] >= floor + 10 * GUARD_TOLERANCE[name], (
+            f"premise: the hand-picked pitch loop must keep {name} clear of its guard boundary {floor:g}; "
+            f"it has {table.loc[name, 'value']:.4g}")
     on = global_check(res, guards=True, maxiter=3, popsize=3)
     off = global_check(res, guards=False, maxiter=3, popsize=3)
     assert on.loc["roll", "guard_specs"] == len(GUARDED_SPECS) and off.loc["roll", "guard_specs"] == 0

@@ -74,6 +74,7 @@ def test_unlisted_axis_is_not_guarded():
     assert guard_specs(plant, loops, roll, {}) == []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("guard", [True, False])
 def test_design_with_guards_keeps_the_first_axis_margins(guard):
     from controllers import DMOSettings, design_multi_axis

@@ -28,6 +28,9 @@ from controllers.plants import first_order_actuator
 
 from tests.controllers._plants import roll_pitch
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 #: the DMO's bisection tolerance here: the design's crossovers are within this fraction of each axis's optimum
 DMO_TOLERANCE = 0.05
 #: small DMO settings with the multistart stage: without it the DMO stops short of the pitch optimum here

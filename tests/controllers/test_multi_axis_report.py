@@ -19,6 +19,9 @@ from controllers.multi_axis_report import (limits_assumptions_table, limits_tabl
                                            multi_axis_tables, write_multi_axis_report)
 from tests.controllers._plants import roll_pitch
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 #: small DMO settings (two boundary steps from the starting gains, no global stage): what is written is
 #: under test, not the optimiser
 FAST = DMOSettings(global_samples=0, max_steps=2, tolerance=0.2, polish_evaluations=0, growth=2.0)

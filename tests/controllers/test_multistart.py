@@ -59,6 +59,7 @@ def _grid_best(design, specs, unit):
     return best[1]
 
 
+@pytest.mark.slow
 def test_multistart_reaches_the_best_crossover_of_a_brute_force_grid():
     design, specs = _small_problem()
     unit = _gain_scale([design], 1.0) * np.array([1.0, 1.0, 1.0])      # w_ref = 1 rad/s: all units equal

@@ -160,6 +160,7 @@ def test_the_multi_axis_design_refuses_boundaries_it_cannot_honour():
         design_multi_axis(plant, axes=["roll"], boundaries=quick, progress=False)
 
 
+@pytest.mark.slow
 def test_the_multi_axis_dmo_honours_a_supplied_boundary():
     # the same design without and with a stricter phase margin supplied by name (no other edit);
     # local DMO stage and one sweep to keep the test short (about 30 s together)

@@ -20,6 +20,9 @@ from aircraft.inflow.published import COAXIAL_HOVER_12STATE
 from flightid import (FGCStructure, combine_responses, fit_staged, frequency_response, frequency_sweep, joint_input_output)
 from flightid.staging import Stage
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 TRUTH = COAXIAL_HOVER_12STATE
 INPUTS = list(TRUTH.input_order)            # G's columns as printed (Eq. 6.2 order)
 OUTPUTS = list(TRUTH.output_names)

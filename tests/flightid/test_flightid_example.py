@@ -7,6 +7,7 @@ import pytest
 SCRIPT = Path(__file__).resolve().parents[2] / "examples" / "flight_test_identification.py"
 
 
+@pytest.mark.slow
 def test_flight_test_example(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     ns = runpy.run_path(str(SCRIPT), run_name="__main__")

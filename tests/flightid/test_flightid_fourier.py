@@ -72,6 +72,7 @@ def _first_order_211(noise, rng, b0=4.0, a0=2.0, _cache={}):
     return t, u, y0 + noise * np.sqrt(np.mean(y0 ** 2)) * rng.standard_normal(t.size)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("noise", [0.01, 0.10, 0.30])
 def test_output_error_standard_errors_match_monte_carlo(noise):
     rng = np.random.default_rng(int(noise * 1000))

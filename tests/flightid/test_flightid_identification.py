@@ -7,6 +7,9 @@ from flightid import (IdentificationError, MLTauStructure, FGCStructure, GainDel
 from flightid.errors import SingularInputError
 from aircraft.identification.testing import (coaxial_sweep_set, simulate_mltau, printed_6state_structure as coaxial_6state_structure, printed_6state_values as truth_values)
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 OMEGA = 27.0
 
 

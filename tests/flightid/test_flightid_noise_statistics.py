@@ -61,6 +61,7 @@ def _record():
     return t, u, y0
 
 
+@pytest.mark.slow
 def test_standard_errors_against_monte_carlo_at_three_noise_levels():
     t, u, y0 = _record()
     s = TransferFunctionStructure(0, 1, initial={"b0": 2.0, "a0": 1.5, "tau": 0.05})

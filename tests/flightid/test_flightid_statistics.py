@@ -18,6 +18,7 @@ def _sweep_record(dt, delay_samples):
     return t, u, lsim(([2.0], [1.0, 1.5]), ud, t)[1]
 
 
+@pytest.mark.slow
 def test_scaled_standard_errors_follow_the_noise_and_leave_cifer_bounds_unchanged():
     t, u, y0 = _sweep_record(0.01, 5)                          # tau = 0.05 s
     s = TransferFunctionStructure(0, 1, initial={"b0": 2.0, "a0": 1.5, "tau": 0.05})

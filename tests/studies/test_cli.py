@@ -9,7 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-from aircraft.provenance import check_results
+import pytest
+from aircraft.provenance_check import check_results
 
 ROOT = Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
@@ -45,6 +46,7 @@ def test_help_is_fast_and_lists_every_study():
     assert "results" in out and "check-results" in out
 
 
+@pytest.mark.slow
 def test_every_study_command_names_a_study_with_a_main():
     out = _python("import importlib\nfrom studies import cli\n"
                   "for study in cli.STUDIES.values():\n"
@@ -64,6 +66,7 @@ def test_long_runs_say_so_and_how_long():
     assert skip[1:] == ["/x/hover_control_comparison"]
 
 
+@pytest.mark.slow
 def test_study_run_writes_a_fresh_manifest_and_staleness_is_detected(tmp_path, capsys):
     out = tmp_path / "results" / "pitt_peters_hover_check"
     assert _rotorwake("pitt-peters-hover-check", "--out", out).returncode == 0
@@ -99,6 +102,7 @@ AIRCRAFT_STUDIES = ("wake-identification", "forward-flight-identification", "off
                     "coaxial-wake-identification", "wake-length-check")
 
 
+@pytest.mark.slow
 def test_studies_take_the_aircraft_from_the_command_line():
     for command in AIRCRAFT_STUDIES:
         shown = _rotorwake(command, "--help")
@@ -114,6 +118,7 @@ def test_unknown_command_is_an_error():
     assert _rotorwake("no-such-study").returncode == 2
 
 
+@pytest.mark.slow
 def test_study_help_shows_each_option_with_its_default():
     text = _python("import argparse\nfrom studies import cli\nbefore = argparse.ArgumentParser.__init__\n"
                    "try:\n    cli.main(['identification-demo', '--help'])\nexcept SystemExit as exc:\n"
@@ -125,6 +130,7 @@ def test_study_help_shows_each_option_with_its_default():
     assert "RESTORED True" in text     # the help-only patch is undone
 
 
+@pytest.mark.slow
 def test_results_reruns_each_study_with_the_options_of_its_committed_manifest(tmp_path):
     # `rotorwake results` must reproduce what is committed (e.g. a --coarse run), not
     # the study's defaults; without a manifest it falls back to the defaults
@@ -145,6 +151,7 @@ def test_results_reruns_each_study_with_the_options_of_its_committed_manifest(tm
     assert "FWD []" in out and "MAIN []" in out
 
 
+@pytest.mark.slow
 def test_the_shipped_models_command_prints_progress_and_wall_time():
     # regenerate is replaced by a stand-in (no wake run): the command's own lines are checked
     out = _python("import types\nfrom studies import cli\nfrom aircraft.identification import shipped\n"

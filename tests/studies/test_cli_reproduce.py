@@ -11,6 +11,7 @@ import os
 import subprocess
 import sys
 from pathlib import Path
+import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
@@ -41,6 +42,7 @@ def _scale(path, column, row, factor):
     return old, old * factor
 
 
+@pytest.mark.slow
 def test_reproduce_passes_on_a_fresh_folder_and_fails_naming_what_moved(tmp_path):
     results = tmp_path / "results"
     first = _rotorwake(STUDY, "--out", results / FOLDER)
@@ -76,6 +78,7 @@ def test_reproduce_passes_on_a_fresh_folder_and_fails_naming_what_moved(tmp_path
     assert f"matrices.csv, column '{COLUMN}'" in again.stdout and "1 moved" in again.stdout
 
 
+@pytest.mark.slow
 def test_a_study_may_widen_the_tolerance_of_its_columns(tmp_path):
     # RESULT_TOLERANCES of the study module (pattern -> (rtol, atol)) applies on top of the default
     results = tmp_path / "results"
@@ -90,6 +93,7 @@ def test_a_study_may_widen_the_tolerance_of_its_columns(tmp_path):
     assert "within tolerance" in out.stdout
 
 
+@pytest.mark.slow
 def test_reproduce_refuses_what_it_cannot_rerun(tmp_path):
     results = tmp_path / "results"
     # by default the main job's folders: none here
@@ -112,6 +116,7 @@ def test_reproduce_refuses_what_it_cannot_rerun(tmp_path):
     assert not (results / "rerun").exists()
 
 
+@pytest.mark.slow
 def test_check_results_prints_the_versions_column(tmp_path):
     results = tmp_path / "results"
     assert _rotorwake(STUDY, "--out", results / FOLDER).returncode == 0

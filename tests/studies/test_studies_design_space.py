@@ -46,6 +46,7 @@ def test_design_space_study_writes_table_figure_and_schedule(tmp_path):
         assert doc["spacings"] == [0.14] and doc["cts"] == [0.0096]
 
 
+@pytest.mark.slow
 def test_design_space_study_offers_both_structures_and_the_all_points_schedule():
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
     done = subprocess.run([sys.executable, "-m", "studies.coaxial_design_space", "--help"],

@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 import numpy as np
 import pandas as pd
 
@@ -13,6 +14,7 @@ from aircraft.inflow import IdentifiedInflow
 ROOT = Path(__file__).resolve().parents[2]
 
 
+@pytest.mark.slow
 def test_quasi_steady_study_compares_each_model_with_the_same_steps(tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
     done = subprocess.run([sys.executable, "-m", "studies.coaxial_quasi_steady", "--small", "--no-cache", "--out",

@@ -20,6 +20,7 @@ def test_isolated_rotor_check_bad_input_and_single_rotor():
         identify_coaxial_forward(structure="coaxial_6state", ct=0.0124)
 
 
+@pytest.mark.slow
 def test_isolated_rotor_check_against_itself_and_the_printed_model():
     # Isolated Rotors entered as a model must coincide with the reference (0 dB, 0 deg):
     # the plumbing compares like with like. The printed Eqs. 6.12-6.13 were identified at
@@ -45,6 +46,7 @@ def test_isolated_rotor_check_against_itself_and_the_printed_model():
     assert len(fig.axes) == 8
 
 
+@pytest.mark.slow
 def test_isolated_rotor_check_reports_when_no_model_trims():
     # every model but the reference failing to trim is a verdict, not a KeyError
     from studies.analysis.coaxial_200kt import isolated_rotor_check

@@ -92,6 +92,7 @@ def test_profile_split_by_hand():
         profile_split(pts, inv, 0.076, tolerance=1.5)
 
 
+@pytest.mark.slow
 def test_the_study_runs_small_and_writes_its_files(tmp_path):
     # a coarse wake and three thrusts: the plumbing end to end (numbers not judged)
     import subprocess

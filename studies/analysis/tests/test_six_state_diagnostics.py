@@ -45,6 +45,7 @@ def test_coaxial_sum_difference_signs_follow_the_data():
     np.testing.assert_allclose(t @ t.T, np.eye(6), atol=1e-15)
 
 
+@pytest.mark.slow
 def test_six_state_diagnostics_pinned_mass_row_recovers_eq_5_3_on_its_own_data():
     """Exact data from the printed Eq. 5.3 (in our frames): with the apparent-mass
     diagonal held at its true value and every other parameter started 10 % off, the
@@ -98,6 +99,7 @@ def _exact_data(values=TRUTH):
     return st, MeasuredResponse(h, W, np.ones(h.shape), st.inputs, st.outputs)
 
 
+@pytest.mark.slow
 def test_six_state_diagnostics_fits_the_axisymmetric_rows_on_their_own_data():
     # exact data with the b terms: the axisymmetric row from the pipeline's start lands
     # on the truth, and its cost table holds the 8 off-harmonic pairs Eq. 5.3 cannot fit

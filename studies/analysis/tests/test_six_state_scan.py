@@ -125,6 +125,7 @@ def _meets(row):
             and row.J_ave <= 100.0)
 
 
+@pytest.mark.slow
 def test_scan_finds_the_true_structure_on_exact_data():
     data = _data()
     cands = [SixStateCandidate((1.0, 25.0)), SixStateCandidate((1.0, 25.0), "none", CROSS_ROTOR_FEEDTHROUGH)]
@@ -152,6 +153,7 @@ def test_scan_finds_the_true_structure_on_exact_data():
     assert scan.plot().get_ylabel().startswith("largest")
 
 
+@pytest.mark.slow
 def test_scan_reduction_follows_the_guideline_thresholds():
     # with the reduction on (the study's setting) each removal may raise J_ave by at
     # most 2 (flightid.reduce's max_rise_average), so the reduced cost is bounded by

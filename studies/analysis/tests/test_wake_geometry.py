@@ -102,6 +102,7 @@ def test_fitted_rates_recover_a_landgrebe_trajectory():
     assert (k1, k2) == pytest.approx(landgrebe_descent_rates(0.006, 0.08, 4, -10.0), abs=1e-12)
 
 
+@pytest.mark.slow
 def test_study_small_writes_its_files(tmp_path):
     done = subprocess.run([sys.executable, "-m", "studies.wake_geometry_check", "--small", "--out", str(tmp_path)],
                           cwd=ROOT, capture_output=True, text=True, timeout=300)

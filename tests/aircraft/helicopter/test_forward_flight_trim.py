@@ -100,6 +100,7 @@ def test_shaft_tilt_pitches_the_hover_attitude_nose_up_by_the_hub_moment_share()
     assert th[1] - th[0] == pytest.approx(expected, rel=0.05)
 
 
+@pytest.mark.slow
 def test_single_rotor_forward_flight_linearisation_matches_a_nonlinear_doublet(uh60):
     tr = trim(uh60, TrimCondition(speed=40.0))
     sys = linearize(tr)

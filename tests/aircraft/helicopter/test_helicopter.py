@@ -58,6 +58,7 @@ def test_linearisation_is_insensitive_to_the_step_size(coaxial_clr):
         assert np.linalg.norm(a2 - a1) / np.linalg.norm(a1) < 0.01
 
 
+@pytest.mark.slow
 def test_linear_model_matches_nonlinear_doublet(coaxial_clr):
     heli, tr = coaxial_clr
     sys = linearize(tr, inputs="rotor")

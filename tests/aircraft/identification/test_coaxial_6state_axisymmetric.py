@@ -113,6 +113,7 @@ def test_exact_data_are_fitted_exactly_from_the_truth():
     assert r.J_ave < 0.01
 
 
+@pytest.mark.slow
 def test_pipeline_starts_recover_exact_data():
     from aircraft.identification import IdentificationSettings
     from aircraft.identification.pipeline import _start_candidates
@@ -161,6 +162,7 @@ def _pp_truth():
     return {**TRUTH, **PITT_PETERS_COLLECTIVE_MASS}
 
 
+@pytest.mark.slow
 def test_a_priori_values_are_held_through_starts_and_fit():
     from aircraft.identification import IdentificationSettings
     from aircraft.identification.structures.axisymmetric import PITT_PETERS_COLLECTIVE_MASS

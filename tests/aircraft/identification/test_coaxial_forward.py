@@ -73,6 +73,7 @@ def _truth_response(truth_values, structure, omega_rotor, w):
     return _scipy_response(F, G, structure._summing_matrix(), w)
 
 
+@pytest.mark.slow
 def test_synthetic_truth_near_wake_fit_recovers_the_parameters():
     # Truth: a fully coupled first-order model (the near-wake half, 72 parameters),
     # stable, responses from scipy with 0.5 % seeded complex noise and coherence 0.98.
@@ -242,6 +243,7 @@ def test_study_small_end_to_end(tmp_path):
 
 
 
+@pytest.mark.slow
 def test_refits_use_the_analytic_jacobian_and_it_is_exact_on_eq_6_5():
     """The 180-parameter structure fits with the analytic Jacobian (its refits are the
     reduction's hot spot); on the printed 200 kt model it equals central differences of

@@ -156,6 +156,7 @@ def _synthetic_runs(kr, lag=None, T=45.0, dt=0.01):
     return runs
 
 
+@pytest.mark.slow
 def test_kr_of_a_known_pitt_peters_model_is_recovered():
     runs = _synthetic_runs(KR_ANALYTICAL)
     res = wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT, fit_range=(1.0, 10.0))
@@ -195,6 +196,7 @@ def test_frequency_dependent_kr_is_resolved():
     assert res.kr_constant == pytest.approx(float(np.mean((1.2 * a / (1j * pts + a)).real)), rel=0.03)
 
 
+@pytest.mark.slow
 def test_kr_coherence_is_the_propagated_one_with_the_weighted_one_beside_it():
     runs = _synthetic_runs(KR_ANALYTICAL)
     res = wake_distortion_from_runs(runs, KR_CONTROLS, OMEGA, CT)
@@ -255,6 +257,7 @@ def test_bad_input_is_refused_with_clear_messages():
 
 
 # -- end to end ---------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_study_runs_end_to_end_on_a_tiny_wake(tmp_path):
     # tiny wake (20 deg steps, 1.5 revs, 4 elements), 14 s sweeps, mu = 0.1 and the hover
     # K_R sweeps: 10 wake runs, about a minute of one core (wake numba compile included)

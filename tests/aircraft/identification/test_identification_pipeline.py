@@ -14,6 +14,9 @@ from aircraft.inflow.model_files import load_record
 from aircraft.inflow import IdentifiedInflow
 from aircraft.wake import FlightCondition, WakeSettings
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 CT = 0.0061
 # tiny wake: 20 deg steps, 1.5 revolutions, 5 elements, 20 s sweeps from 1.2 rad/s
 # (about 50 s of one core; the default resolution is what the shipped model uses)

@@ -54,6 +54,7 @@ def test_the_digest_covers_the_identification_code_and_not_the_bookkeeping(here)
     assert not any(rel.startswith("studies/") for rel in modules)
 
 
+@pytest.mark.slow
 def test_a_freshly_written_record_is_fresh_and_keeps_its_digest(here, project, tmp_path):
     # stamped with this checkout's code, checked against the copy's: the digest does not
     # depend on where the project lies
@@ -63,6 +64,7 @@ def test_a_freshly_written_record_is_fresh_and_keeps_its_digest(here, project, t
     assert staleness(back, rec.settings_hash, root=project) == []
 
 
+@pytest.mark.slow
 def test_an_edit_to_a_flightid_module_makes_the_record_stale_naming_it(here, project, tmp_path):
     back = load_record(_record(here).save(tmp_path / "tiny.json"))
     # a comment or a docstring is not code: still fresh
@@ -73,6 +75,7 @@ def test_an_edit_to_a_flightid_module_makes_the_record_stale_naming_it(here, pro
     assert staleness(back, back.settings_hash, root=project) == ["code digest: changed flightid/fitting.py"]
 
 
+@pytest.mark.slow
 def test_a_gpu_kernel_edit_stales_only_records_whose_runs_used_it(here, project):
     cpu, unknown = _record(here, backend="cpu"), _record(here, backend=None)
     unknown.provenance = {}          # a file that does not say which backend ran
@@ -90,6 +93,7 @@ def test_a_file_without_a_code_digest_is_stale_and_each_reason_is_named(project,
         "settings hash: file 0123456789abcdef, recipe fedcba9876543210", NO_CODE_DIGEST]
 
 
+@pytest.mark.slow
 def test_stale_models_reports_each_shipped_file_with_its_reasons(here, monkeypatch):
     want = shipped.RECIPES["uh60_hover_3state"].hash()
     fresh = _record(here, settings_hash=want)
@@ -103,6 +107,7 @@ def test_stale_models_reports_each_shipped_file_with_its_reasons(here, monkeypat
     assert got["coaxial_hover_6state"][1] == NO_CODE_DIGEST
 
 
+@pytest.mark.slow
 def test_regenerate_records_the_code_digest_of_a_printed_model(tmp_path):
     # a printed model's file: written by regenerate (no wake run), fresh against the code now
     rec = shipped.regenerate("published_eq5_3", path=tmp_path / "eq5_3.json")
@@ -113,6 +118,7 @@ def test_regenerate_records_the_code_digest_of_a_printed_model(tmp_path):
     assert staleness(back, rec.settings_hash) == []
 
 
+@pytest.mark.slow
 def test_a_reason_names_at_most_a_few_modules(here):
     # a file written on another Python differs in every module: the reason stays one line
     rec = _record(here)

@@ -66,6 +66,7 @@ def test_every_published_file_is_shipped_and_matches_the_printed_data():
         assert rec.frame == "rotor"
 
 
+@pytest.mark.slow
 @pytest.mark.shipped_files
 def test_shipped_files_are_not_stale():
     # fails when a shipped model's recipe (settings, structure, pipeline version,

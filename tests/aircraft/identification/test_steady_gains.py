@@ -186,6 +186,7 @@ def test_wake_ramp_window_must_lie_within_the_ramp():
         wake_steady_gains(coaxial_compound(), 0.0096, tilt_window=(8.0, 12.0))
 
 
+@pytest.mark.slow
 def test_wake_records_on_a_tiny_single_rotor_wake():
     # the wake glue end to end (names, the single rotor's unsuffixed signals, windows,
     # compare with a shipped model) on a coarse wake and short records; ~20 s

@@ -15,6 +15,7 @@ from aircraft.inflow.model_files import load_record, shipped_models
 ROOT = Path(__file__).resolve().parents[3]
 
 
+@pytest.mark.slow
 def test_every_shipped_structure_is_known_right_after_importing_the_package():
     # a fresh interpreter: nothing but the package itself imported (no registration by side effect)
     keys = sorted({(load_record(n).settings.get("structure") or {}).get("key") for n in shipped_models()} - {None})
@@ -70,6 +71,7 @@ def test_identification_and_off_rotor_settings_share_one_excitation():
         IdentificationSettings(coherence_min=1.0)
 
 
+@pytest.mark.slow
 @pytest.mark.shipped_files
 def test_shipped_models_command_checks_the_files():
     out = subprocess.run([sys.executable, "-m", "studies.cli", "shipped-models", "--check", "--list"], cwd=ROOT,

@@ -171,6 +171,7 @@ def test_shipped_tilt_model_answers_a_held_upper_tilt_as_the_wake_does(shipped):
     assert -0.135 < g.loc["lam1s_U", "beta1s_U"] < -0.065
 
 
+@pytest.mark.slow
 def test_rate_and_tilt_gains_are_recovered_from_lambda_over_beta_dot_sweeps():
     # Synthetic truth: the shipped tilt model's values, simulated by scipy (a
     # hand-built 16-state system: xi' = beta_dot exactly, not flightid's code),

@@ -29,6 +29,7 @@ def test_seeds_need_one_per_control():
                                  controls=["theta0_U"], outputs=["lam0_U"], seeds=[0, 1])
 
 
+@pytest.mark.slow
 def test_wake_length_study_runs_small(tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
     done = subprocess.run([sys.executable, "-m", "studies.wake_length_check", "--small", "--no-cache", "--out",

@@ -114,6 +114,7 @@ def test_round_off_perturbations_stay_within_the_cross_machine_tolerance(relativ
         assert abs(other[name][late].mean() - ref[name][late].mean()) < CROSS_MACHINE_RTOL * ref.CT[late].mean()
 
 
+@pytest.mark.slow
 def test_wake_cache_never_serves_results_of_other_code(tmp_path, monkeypatch):
     # The cache key includes a digest of the wake's source: with another digest
     # (what any edit of aircraft/wake/*.py gives) the runs are recomputed, not

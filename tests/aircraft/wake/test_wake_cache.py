@@ -264,6 +264,7 @@ _KILL_SCRIPT = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow
 def test_a_sweep_set_killed_midway_resumes_with_every_finished_run(tmp_path, monkeypatch):
     specs = KILL_SPECS
     script = tmp_path / "kill_me.py"

@@ -36,6 +36,9 @@ from scipy.optimize import brentq
 from aircraft.configs import coaxial_compound
 from aircraft.wake import FreeVortexWake, WakeSettings
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 COARSE = dict(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 #: bound on the relative rms of the revolution-averaged trimmed lambda0: measured
 #: 0.09-0.14 % (12-revolution windows) with the filtered common buffer velocity,

@@ -90,6 +90,7 @@ def cluster():
         yield cl, client
 
 
+@pytest.mark.slow
 def test_local_pool_gives_the_serial_results_and_cache(serial, tmp_path):
     ref, ref_folder, _ = serial
     folder = tmp_path / "pool"
@@ -99,6 +100,7 @@ def test_local_pool_gives_the_serial_results_and_cache(serial, tmp_path):
     _assert_same_cache(folder, ref_folder)
 
 
+@pytest.mark.slow
 def test_dask_cluster_gives_the_serial_results_and_cache(serial, cluster, tmp_path, capsys):
     ref, ref_folder, _ = serial
     cl, client = cluster
@@ -227,6 +229,7 @@ def test_run_sweeps_validates_the_scheduler_before_trimming(tmp_path, monkeypatc
     assert fake.trims == 0 and _entries(tmp_path) == set()
 
 
+@pytest.mark.slow
 def test_a_result_from_other_wake_code_is_not_stored(tmp_path, monkeypatch):
     fake = _Fake()
     monkeypatch.setattr(sweeps_module, "_trim", fake.trim)

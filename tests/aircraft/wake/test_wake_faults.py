@@ -33,7 +33,9 @@ from aircraft.wake import (CacheWarning, FlightCondition, SweepSpec, WakeCache, 
 from aircraft.wake.cache import CacheStoreWarning, CacheWriteError, check_finite_frame
 from aircraft.wake.executor import LocalPoolExecutor, WorkerLostError, make_executor
 
-pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="SIGKILL and POSIX rename semantics")
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = [pytest.mark.skipif(sys.platform == "win32", reason="SIGKILL and POSIX rename semantics"),
+              pytest.mark.slow]
 
 CFG = uh60_single_rotor()
 SETTINGS = WakeSettings()

@@ -16,6 +16,9 @@ from aircraft.configs import coaxial_compound, uh60_single_rotor
 from aircraft.wake import (FreeVortexWake, WakeSettings, WakeSettingsError, FlightCondition,
                            SweepSpec, run_sweeps)
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 COARSE = dict(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 TRIM = dict(ct=(0.0053, 0.0043), mode="torque_balance", tol=1e-4)
 

@@ -143,6 +143,7 @@ _SIMULATOR_SCRIPT = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow
 def test_kernel_under_cuda_simulator_matches_cpu_kernel(tmp_path, cpu_backend):
     tg, a, b, g, rc = _segments(3, m=50, n=80)
     np.savez(tmp_path / "in.npz", tg=tg, a=a, b=b, g=g, rc=rc)

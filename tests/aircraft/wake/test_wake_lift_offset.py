@@ -13,6 +13,9 @@ import pytest
 from aircraft.configs import coaxial_compound, uh60_single_rotor
 from aircraft.wake import FlightCondition, FreeVortexWake, WakeInputError, WakeSettings
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 
 def _wake(cfg, speed, alpha=math.radians(2.0)):
     s = WakeSettings(azimuth_step=math.radians(15.0), wake_revolutions=1.5, n_elements=6)

@@ -9,6 +9,9 @@ from aircraft.configs import uh60_single_rotor, coaxial_compound
 from aircraft.wake import (FreeVortexWake, WakeSettings, FlightCondition, WakeSettingsError,
                            run_sweeps, SweepSpec)
 
+# every test here shares a fixture that takes seconds to build: not in the quick set (make test-quick)
+pytestmark = pytest.mark.slow
+
 KAPPA = 1.15   # induced-power factor compared against: lambda_h = kappa sqrt(CT/2)
 COARSE = dict(azimuth_step=math.radians(15.0), wake_revolutions=2.0, n_elements=6)
 
