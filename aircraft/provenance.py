@@ -61,7 +61,7 @@ RESULTS_DESCRIPTION = "README.md"
 PROJECT_PACKAGES = ("flightid", "aircraft", "controllers", "studies")
 # bookkeeping modules that cannot change a number: not recorded
 _NOT_RESULTS_CODE = ("aircraft/provenance.py", "aircraft/provenance_check.py", "studies/cli.py",
-                     "aircraft/result_comparison.py")
+                     "studies/commands.py", "aircraft/result_comparison.py")
 # distributions whose version can move a computed number, in the order reported
 _NUMERICAL_PACKAGES = ("numpy", "scipy", "control", "casadi", "numba", "slycot", "pandas", "matplotlib")
 #: Modules that compute numbers only on one Biot-Savart kernel backend: ``{path:

@@ -1,6 +1,6 @@
 """Write the study pages, ``docs/studies/``, from the CLI's registry (called by conf.py).
 
-One page per command of :data:`studies.cli.STUDIES`, so a new study gets its page
+One page per command of :data:`studies.commands.STUDIES`, so a new study gets its page
 without editing the docs. Each page holds
 
 * the hand-written notes ``docs/studies/_notes/<command>.rst``: what the study
@@ -174,7 +174,7 @@ def index(studies):
              "and each folder's ``README.md`` says what its files hold.",
              "",
              "These pages are generated from the command line's registry",
-             "(``studies.cli.STUDIES``) and from the committed results at each build: every",
+             "(``studies.commands.STUDIES``) and from the committed results at each build: every",
              "table is read from its CSV file, so the numbers on a page are those of the",
              "committed run. The dissertation's numbers appear only in columns that say so.",
              "What the models and the studies cannot do yet is on one page, :doc:`../limits`.",

@@ -1,6 +1,6 @@
 """The docs' study pages follow the command line's registry and read the committed results.
 
-``docs/_studies.py`` writes one page per command of ``studies.cli.STUDIES`` at each
+``docs/_studies.py`` writes one page per command of ``studies.commands.STUDIES`` at each
 build; here the pages are generated into a temporary folder (no Sphinx needed) and
 checked: every command has a page and hand-written notes, every table and figure
 points to a file that exists, and the notes quote no result numbers (those change
