@@ -35,7 +35,7 @@ import tempfile
 import time
 from pathlib import Path
 
-__all__ = ["Study", "STUDIES", "main", "REPRODUCIBLE_BLAS_KERNELS"]
+__all__ = ["Study", "STUDIES", "main", "hover_study", "REPRODUCIBLE_BLAS_KERNELS"]
 
 #: OpenBLAS kernel family every run uses on an x86-64 processor that has it (AVX2 and FMA: every
 #: such processor since 2013). OpenBLAS picks its kernels by processor (AVX-512 ones here, AVX2
@@ -424,6 +424,25 @@ def main(argv=None):
     for name in names:
         run_study(name, options[name])
     return 0
+
+
+def hover_study(argv=None):
+    """Entry point of the older ``rotorwake-hover-study`` console script: ``rotorwake main``.
+
+    It runs through the command line like every study, so it takes the same BLAS
+    kernels, writes the same manifests and prints the same comparison.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Options of ``rotorwake main`` (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status (0: success).
+    """
+    return main(["main", *(sys.argv[1:] if argv is None else argv)])
 
 
 def committed_options(name, results="results"):
