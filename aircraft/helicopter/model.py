@@ -83,7 +83,7 @@ class Helicopter:
         self.n_rigid = len(self.state_names)
         self.state_names += list(inflow.state_names)
         if config.is_coaxial:
-            # the controls carry the configuration's rotor names ("U", "L": DESIGN.md's)
+            # the controls carry the configuration's rotor names ("U" upper, "L" lower, as every signal does)
             self.input_names = [f"{c}{rotor_suffix(r.name)}" for r in config.rotors
                                 for c in ("theta0", "theta1s", "theta1c")] + ["theta_prop"]
         else:

@@ -31,7 +31,7 @@ lower rotor are the same as those of the upper one:
   wind-tunnel wake runs an identified model comes from) they equal the
   shaft-relative rates, so identified models need no change.
 
-Signals use the canonical names of DESIGN.md: loads ``CT_U, CL_U, CM_U, CT_L, …``
+Signals use the project's canonical names (:doc:`/architecture`): loads ``CT_U, CL_U, CM_U, CT_L, …``
 (no suffix for a single rotor), inflow ``lam0_U, lam1s_U, lam1c_U, …``, flap-rate
 (wake-distortion) inputs ``beta1s_dot_U, beta1c_dot_U, …``.
 

@@ -1,4 +1,4 @@
-"""Bad inputs to aircraft's public boundaries (issue 13): configurations, wake
+"""Bad inputs to aircraft's public boundaries: configurations, wake
 settings and flight conditions, sweep specs, wake trim/run, aircraft trim,
 linearisation and coupling numerators.  Each raises a ValueError subclass naming
 the field and what is allowed, and trims fail fast in their own words."""
@@ -234,7 +234,7 @@ def test_trim_condition_rejects(kwargs, match):
 
 @pytest.mark.parametrize("inflow", [ClimbingLowerRotor, DynamicClimb, IsolatedRotors])
 def test_thirty_times_the_weight_fails_as_a_trim_error_before_any_solving(inflow):
-    # issue 13: this spent 104-150 s and raised InflowError or a bare TrimError;
+    # an earlier trim spent 104-150 s here and raised InflowError or a bare TrimError;
     # now a TrimError from the blade-loading check, with no model evaluation at
     # all (measured < 1 ms)
     cfg = coaxial_compound()
@@ -247,7 +247,7 @@ def test_thirty_times_the_weight_fails_as_a_trim_error_before_any_solving(inflow
 
 def test_an_unreachable_trim_stops_within_its_evaluation_budget():
     # 2.8x the weight passes the blade-loading check (C_T/sigma 0.21) but has no
-    # trim with this inflow; before issue 13 the solver had 4000 LM iterations'
+    # trim with this inflow; an earlier solver had 4000 LM iterations'
     # worth of evaluations plus 30 unguarded Newton steps (9,600 evaluations and
     # 104 s at 30x, measured)
     cfg = coaxial_compound()

@@ -1,4 +1,4 @@
-"""Aircraft as data (issue 35, item 4): AircraftConfig <-> TOML files.
+"""Aircraft as data: AircraftConfig <-> TOML files.
 
 Round trips of both aircraft (bit for bit), a hand-written minimal single-rotor
 file, errors that name the file and the line or field, and the shipped files

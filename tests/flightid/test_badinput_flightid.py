@@ -1,5 +1,5 @@
 """Bad inputs to flightid's public functions: each raises a ValueError subclass that
-names the argument and what is allowed (issue 13), never a vague numpy/pandas
+names the argument and what is allowed, never a vague numpy/pandas
 error or a silent wrong answer."""
 import numpy as np
 import pandas as pd

@@ -1,6 +1,6 @@
 """Degeneracy guards of flightid (what J cannot see), each against a closed form:
 flat directions, rank-deficient square blocks, multi-start agreement, reduce's
-runaway guard, and refusal of data without information (issue 13 item 6)."""
+runaway guard, and refusal of data without information."""
 import numpy as np
 import pandas as pd
 import pytest
@@ -108,7 +108,7 @@ def test_multistart_agrees_on_a_well_posed_problem_and_not_on_a_redundant_one():
 
 
 def test_fit_refuses_data_without_coherent_points():
-    # issue 13: coherence zero everywhere with coherence_min = 0 used to return
+    # coherence zero everywhere with coherence_min = 0 used to return
     # J_ave = 0 and success with the initial guess
     dead = _data(4.0 / (S + 2.0), ["y"], ["u"], coherence=0.0)
     with pytest.raises(NoInformationError, match="no response has a coherent point"):

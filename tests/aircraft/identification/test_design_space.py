@@ -1,4 +1,4 @@
-"""Design space (issue 14, item 4): spaced configurations, the result object on
+"""Design space: spaced configurations, the result object on
 stand-in identifications, and the scheduled (interpolated) inflow model.
 
 The wake identification itself is exercised by the study's subprocess test

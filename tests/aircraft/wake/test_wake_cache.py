@@ -1,4 +1,4 @@
-"""Fault injection for the wake cache and run_sweeps' resume (issue 13).
+"""Fault injection for the wake cache and run_sweeps' resume.
 
 The marching is replaced by a cheap deterministic runner (monkeypatched
 ``_trim``/``_run_spec``) so that every test takes well under a second of

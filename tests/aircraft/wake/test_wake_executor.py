@@ -1,4 +1,4 @@
-"""Executors of run_sweeps (issue 14, item 1): serial, local pool, Dask cluster.
+"""Executors of run_sweeps: serial, local pool, Dask cluster.
 
 A real (tiny) wake set is run by each executor; the kernel is deterministic
 (each target's induced velocity is summed in the same order by whichever thread

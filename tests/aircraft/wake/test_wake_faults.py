@@ -1,4 +1,4 @@
-"""Runs that survive faults (issue 39): concurrent writers, killed workers, a full disk.
+"""Runs that survive faults: concurrent writers, killed workers, a full disk.
 
 Each fault must end in either a correct result or a clear error, and leave no
 corrupt, partial or temporary file that could ever be read.  The marching is

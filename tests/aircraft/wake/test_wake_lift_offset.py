@@ -1,4 +1,4 @@
-"""Lift-offset wake trim (issue 12, item 4): each rotor trimmed to C_L = -LOS C_T.
+"""Lift-offset wake trim: each rotor trimmed to C_L = -LOS C_T.
 
 The residual only says the trim reached the target it was given; the checks that
 can fail independently are the physics of the sign (more lift on the advancing
