@@ -67,23 +67,19 @@ def record_environment(path):
 
     Raises
     ------
-    FileNotFoundError
-        If ``path`` does not exist.
-    ValueError
-        If the file is not a JSON object.
+    aircraft.inflow.model_files.ModelFileError
+        If ``path`` does not exist or is not a readable model file.
 
     See Also
     --------
     environment_note : the recorded environment against this one.
     """
-    path = Path(path)
-    data = json.loads(path.read_text())
-    if not isinstance(data, dict):
-        raise ValueError(f"{path} is not a model file (a JSON object)")
+    from aircraft.inflow.model_files import load_record
+    # read and written by the model files' own reader and writer (their round trip is lossless)
+    record = load_record(Path(path))
     env = numerical_environment()
-    data.setdefault("provenance", {})["environment"] = env
-    # the layout of aircraft.inflow.model_files.ModelRecord.save
-    path.write_text(json.dumps(data, indent=1) + "\n")
+    record.provenance = {**record.provenance, "environment": env}
+    record.save(path)
     return env
 
 
@@ -108,12 +104,17 @@ def environment_note(path):
 
     Examples
     --------
+    >>> import shutil, tempfile
     >>> from aircraft.inflow.model_files import shipped_model_path
-    >>> environment_note(shipped_model_path("published_eq5_3")) in ("same", "not recorded") or "differs"
-    True
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     copy = shutil.copy(shipped_model_path("published_eq5_3"), tmp)
+    ...     env = record_environment(copy)
+    ...     note = environment_note(copy)
+    >>> note
+    'same'
     """
-    data = json.loads(Path(path).read_text())
-    recorded = (data.get("provenance") or {}).get("environment") or {}
+    from aircraft.inflow.model_files import load_record
+    recorded = load_record(Path(path)).provenance.get("environment") or {}
     return _versions_note({"versions": recorded}, numerical_environment())
 
 

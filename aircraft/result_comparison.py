@@ -36,7 +36,10 @@ import fnmatch
 import math
 from pathlib import Path
 
-__all__ = ["Tolerance", "ResultsComparison", "compare_folders", "TIMING_COLUMNS"]
+__all__ = ["Tolerance", "ResultsComparison", "compare_folders", "TIMING_COLUMNS", "COMPARED_SUFFIXES"]
+
+#: The files compared: tables column by column, text files line by line; others are listed only.
+COMPARED_SUFFIXES = (".csv", ".txt")
 
 #: Column names never compared: they record the run's circumstances, not its results.
 TIMING_COLUMNS = ("wall_s", "wall_time_s", "wall_time", "wake_cache")
@@ -410,7 +413,7 @@ def compare_folders(reference, candidate, tolerances=None, default=Tolerance()):
     for name in names:
         ref_path, new_path = reference / name, candidate / name
         suffix = Path(name).suffix.lower()
-        if suffix not in (".csv", ".txt"):
+        if suffix not in COMPARED_SUFFIXES:
             entries.append(_Entry(name, "", "file", "not compared"))
         elif not (ref_path.is_file() and new_path.is_file()):
             side = "reference" if ref_path.is_file() else "candidate"

@@ -66,8 +66,6 @@ from studies.commands import STUDIES, Study  # noqa: E402  (after the BLAS kerne
 # identification_demo is written by `main` as its stage 1; `results` does not rerun it
 #: What ``rotorwake reproduce`` reruns when no folder is named: the main job's folders.
 _MAIN_FOLDERS = ("hover_control_comparison", "identification_demo")
-#: Files of a results folder that a rerun is compared on (figures differ in bytes).
-_COMPARED = ("*.csv", "*.txt")
 
 
 def _minutes(minutes):
@@ -239,9 +237,10 @@ def _snapshot(folders, into):
     Returns ``{folder: copy}`` for the folders that held any, so that what a run
     replaces can be compared with what it wrote.
     """
+    from aircraft.result_comparison import COMPARED_SUFFIXES
     copies = {}
     for k, folder in enumerate(folders):
-        files = sorted({p for pattern in _COMPARED for p in folder.glob(pattern) if p.is_file()}) \
+        files = sorted(p for p in folder.iterdir() if p.is_file() and p.suffix.lower() in COMPARED_SUFFIXES) \
             if folder.is_dir() else []
         if files:
             copy = Path(into) / f"{k}_{folder.name}"
